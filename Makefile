@@ -1,0 +1,54 @@
+# The two commands of the README: `make demo` and `make test`. Each installs what is missing
+# (Debian packages, only when absent), configures, builds and runs.
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc)
+PY := /usr/bin/python3
+DEB_PACKAGES := cmake g++ ninja-build pkg-config libeigen3-dev libboost-dev libhdf5-dev libfmt-dev \
+  libspdlog-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
+  python3-h5py python3-numpy python3-matplotlib
+# Warnings are errors in CI (CI=true) and whenever GRAN_WERROR=ON is given.
+GRAN_WERROR ?= $(if $(CI),ON,OFF)
+CMAKE_FLAGS ?=
+
+.PHONY: deps configure build demo test validate bench format sanitize clean
+
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "gran: installing missing Debian packages:$$missing"; \
+	  SUDO=""; [ "$$(id -u)" -eq 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing; \
+	fi
+
+configure: deps
+	@cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DGRAN_WERROR=$(GRAN_WERROR) $(CMAKE_FLAGS) >/dev/null
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+demo: build
+	@mkdir -p results/demo
+	$(BUILD_DIR)/gran run studies/demo/binary-thermostat-2d.yaml -o results/demo/binary-thermostat-2d.h5
+	$(PY) studies/plot_result.py results/demo/binary-thermostat-2d.h5 -o results/demo/binary-thermostat-2d.png
+	@echo "demo: results in results/demo/"
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE validate
+
+validate: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -L validate
+
+bench: build
+	@mkdir -p results
+	$(BUILD_DIR)/gran_bench --csv results/bench.csv
+
+format:
+	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
+
+sanitize:
+	$(MAKE) test BUILD_DIR=build-asan CMAKE_FLAGS="-DGRAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
+
+clean:
+	rm -rf $(BUILD_DIR) build-asan

@@ -1,0 +1,388 @@
+#include "libgran/event_driven_engine.hpp"
+
+#include <stdexcept>
+
+namespace gran {
+
+template <int D>
+EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& table,
+                                        Particles<D> particles, EngineSettings settings)
+    : box_(box), p_(std::move(particles)), settings_(settings) {
+    ns_ = table.size();
+    for (const auto& s : table.species) {
+        mass_.push_back(s.mass);
+        diameter_.push_back(s.diameter);
+        inertia_.push_back(s.inertia_factor);
+    }
+    sigma_pair_.resize(ns_ * ns_);
+    alpha_pair_.resize(ns_ * ns_);
+    beta_pair_.resize(ns_ * ns_);
+    for (std::size_t a = 0; a < ns_; ++a) {
+        for (std::size_t b = 0; b < ns_; ++b) {
+            sigma_pair_[a * ns_ + b] = 0.5 * (diameter_[a] + diameter_[b]);
+            alpha_pair_[a * ns_ + b] = table.pair(a, b).alpha;
+            beta_pair_[a * ns_ + b] = table.pair(a, b).beta;
+        }
+    }
+    rough_ = p_.rotating();
+    if (table.rough() && !rough_) {
+        throw std::logic_error("EventDrivenEngine: rough pair laws need angular velocities");
+    }
+    pair_collisions_.assign(ns_ * ns_, 0);
+
+    const std::size_t n = p_.size();
+    count_.assign(n, 0);
+    last_collision_.assign(n, -kInf);
+    ev_time_.assign(n, kInf);
+    ev_partner_.assign(n, -1);
+    ev_count_.assign(n, 0);
+    ev_kind_.assign(n, kNone);
+    now_ = 0;
+    for (std::size_t i = 0; i < n; ++i) now_ = std::max(now_, p_.t[i]);
+    build_cells();
+    queue_.reset(n);
+    synchronize();
+    for (std::uint32_t i = 0; i < n; ++i) predict(i);
+    queue_.rebuild([this](std::uint32_t i) { return ev_time_[i]; });
+}
+
+template <int D>
+std::int32_t EventDrivenEngine<D>::cell_id(const std::array<std::int32_t, D>& cc) const {
+    std::int32_t id = 0;
+    for (int a = D - 1; a >= 0; --a) id = id * ncell_[a] + cc[a];
+    return id;
+}
+
+template <int D>
+void EventDrivenEngine<D>::build_cells() {
+    double dmax = 0;
+    for (double d : diameter_) dmax = std::max(dmax, d);
+    std::int64_t total = 1;
+    for (int a = 0; a < D; ++a) {
+        auto nc = static_cast<std::int64_t>(std::floor(box_.length[a] / dmax));
+        // Periodic axes need >= 3 cells for the 3-cell neighbourhood to be distinct; fewer means
+        // one cell whose images are found by the minimum-image convention.
+        if (nc < 1 || (box_.periodic[a] && nc < 3)) nc = 1;
+        ncell_[a] = static_cast<std::int32_t>(nc);
+        total *= nc;
+    }
+    // Very dilute systems: cap the cell count (memory, empty-cell scans) at ~8 cells per particle.
+    const std::int64_t cap = std::max<std::int64_t>(1 << 16, 8 * std::int64_t(p_.size()));
+    while (total > cap) {
+        int a_max = 0;
+        for (int a = 1; a < D; ++a) {
+            if (ncell_[a] > ncell_[a_max]) a_max = a;
+        }
+        if (ncell_[a_max] <= 3) break;
+        total /= ncell_[a_max];
+        ncell_[a_max] = std::max(ncell_[a_max] / 2, 3);
+        total *= ncell_[a_max];
+    }
+    for (int a = 0; a < D; ++a) cell_width_[a] = box_.length[a] / ncell_[a];
+
+    const std::int32_t ncells = static_cast<std::int32_t>(total);
+    head_.assign(ncells, -1);
+    // Neighbour table: offsets {-1, 0, 1} per axis, only {0} for single-cell axes.
+    std::array<std::vector<int>, D> offsets;
+    nbr_per_cell_ = 1;
+    for (int a = 0; a < D; ++a) {
+        offsets[a] = ncell_[a] == 1 ? std::vector<int>{0} : std::vector<int>{-1, 0, 1};
+        nbr_per_cell_ *= static_cast<int>(offsets[a].size());
+    }
+    neighbours_.assign(std::size_t(ncells) * nbr_per_cell_, -1);
+    for (std::int32_t c = 0; c < ncells; ++c) {
+        std::array<std::int32_t, D> cc;
+        std::int32_t rest = c;
+        for (int a = 0; a < D; ++a) {
+            cc[a] = rest % ncell_[a];
+            rest /= ncell_[a];
+        }
+        for (int k = 0; k < nbr_per_cell_; ++k) {
+            int code = k;
+            std::array<std::int32_t, D> nc;
+            bool inside = true;
+            for (int a = 0; a < D; ++a) {
+                const int m = static_cast<int>(offsets[a].size());
+                nc[a] = cc[a] + offsets[a][code % m];
+                code /= m;
+                if (nc[a] < 0 || nc[a] >= ncell_[a]) {
+                    if (box_.periodic[a]) {
+                        nc[a] = (nc[a] + ncell_[a]) % ncell_[a];
+                    } else {
+                        inside = false;
+                    }
+                }
+            }
+            neighbours_[std::size_t(c) * nbr_per_cell_ + k] = inside ? cell_id(nc) : -1;
+        }
+    }
+    const std::size_t n = p_.size();
+    cc_.assign(n, {});
+    cell_of_.assign(n, -1);
+    next_.assign(n, -1);
+    prev_.assign(n, -1);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        std::array<std::int32_t, D> cc;
+        for (int a = 0; a < D; ++a) {
+            auto k = static_cast<std::int32_t>(std::floor(p_.r[i][a] / cell_width_[a]));
+            cc[a] = std::clamp(k, 0, ncell_[a] - 1);
+        }
+        cc_[i] = cc;
+        cell_insert(i, cell_id(cc));
+    }
+}
+
+template <int D>
+void EventDrivenEngine<D>::cell_insert(std::uint32_t i, std::int32_t c) {
+    cell_of_[i] = c;
+    prev_[i] = -1;
+    next_[i] = head_[c];
+    if (head_[c] >= 0) prev_[head_[c]] = static_cast<std::int32_t>(i);
+    head_[c] = static_cast<std::int32_t>(i);
+}
+
+template <int D>
+void EventDrivenEngine<D>::cell_remove(std::uint32_t i) {
+    const std::int32_t c = cell_of_[i];
+    if (prev_[i] >= 0) {
+        next_[prev_[i]] = next_[i];
+    } else {
+        head_[c] = next_[i];
+    }
+    if (next_[i] >= 0) prev_[next_[i]] = prev_[i];
+}
+
+template <int D>
+void EventDrivenEngine<D>::predict(std::uint32_t i) {
+    // i must be at now_.
+    double best = kInf;
+    std::uint8_t kind = kNone;
+    std::int32_t partner = -1;
+    const Vec<D> ri = p_.r[i];
+    const Vec<D> vi = p_.v[i];
+    const std::uint32_t si = p_.species[i];
+
+    // Cell crossings, or walls on bounded axes.
+    for (int a = 0; a < D; ++a) {
+        const double va = vi[a];
+        if (va == 0.0) continue;
+        double t;
+        int code;
+        std::uint8_t k;
+        if (va > 0) {
+            if (box_.periodic[a] || cc_[i][a] < ncell_[a] - 1) {
+                t = ((cc_[i][a] + 1) * cell_width_[a] - ri[a]) / va;
+                k = kCell;
+            } else {
+                t = (box_.length[a] - 0.5 * diameter_[si] - ri[a]) / va;
+                k = kWall;
+            }
+            code = 2 * a + 1;
+        } else {
+            if (box_.periodic[a] || cc_[i][a] > 0) {
+                t = (cc_[i][a] * cell_width_[a] - ri[a]) / va;
+                k = kCell;
+            } else {
+                t = (0.5 * diameter_[si] - ri[a]) / va;
+                k = kWall;
+            }
+            code = 2 * a;
+        }
+        t = std::max(t, 0.0);
+        if (t < best) {
+            best = t;
+            kind = k;
+            partner = code;
+        }
+    }
+
+    // Collisions with particles in the neighbouring cells.
+    const std::int32_t* nb = &neighbours_[std::size_t(cell_of_[i]) * nbr_per_cell_];
+    const double* sig = &sigma_pair_[si * ns_];
+    for (int k = 0; k < nbr_per_cell_; ++k) {
+        const std::int32_t c = nb[k];
+        if (c < 0) continue;
+        for (std::int32_t j = head_[c]; j >= 0; j = next_[j]) {
+            if (std::uint32_t(j) == i) continue;
+            const Vec<D> rj = p_.r[j] + p_.v[j] * (now_ - p_.t[j]);
+            const Vec<D> dr = box_.separation(ri, rj);
+            const Vec<D> dv = vi - p_.v[j];
+            const double t = pair_collision_time<D>(dr, dv, sig[p_.species[j]]);
+            if (t < best) {
+                best = t;
+                kind = kCollision;
+                partner = j;
+            }
+        }
+    }
+    ev_time_[i] = now_ + best;
+    ev_kind_[i] = kind;
+    ev_partner_[i] = partner;
+    if (kind == kCollision) ev_count_[i] = count_[partner];
+}
+
+template <int D>
+void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
+    move(i);
+    move(j);
+    const std::uint32_t si = p_.species[i], sj = p_.species[j];
+    const std::size_t pij = si * ns_ + sj;
+    const Vec<D> dr = box_.separation(p_.r[i], p_.r[j]);
+    const double dist = dr.norm();
+    const Vec<D> n = dr / dist;
+    if (dist < sigma_pair_[pij] * (1.0 - 1e-10)) ++counters_.overlap_collisions;
+    double alpha = alpha_pair_[pij];
+    double beta = beta_pair_[pij];
+    if (settings_.tc_guard &&
+        (now_ - last_collision_[i] < settings_.tc || now_ - last_collision_[j] < settings_.tc)) {
+        alpha = 1.0;
+        beta = -1.0;
+        ++counters_.tc_collisions;
+    }
+    CollisionRecord<D> rec;
+    if (sink_) {
+        rec.time = now_;
+        rec.i = i;
+        rec.j = j;
+        rec.si = si;
+        rec.sj = sj;
+        rec.n = n;
+        rec.vi = p_.v[i];
+        rec.vj = p_.v[j];
+        if (rough_) {
+            rec.wi = p_.w[i];
+            rec.wj = p_.w[j];
+        }
+        rec.alpha = alpha;
+        rec.beta = beta;
+        rec.contact_distance = sigma_pair_[pij];
+    }
+    double impulse;
+    if (rough_) {
+        impulse = rough_collision<D>(p_.v[i], p_.v[j], p_.w[i], p_.w[j], mass_[si], mass_[sj],
+                                     diameter_[si], diameter_[sj], inertia_[si], inertia_[sj], n, alpha,
+                                     beta);
+    } else {
+        impulse = smooth_collision<D>(p_.v[i], p_.v[j], mass_[si], mass_[sj], n, alpha);
+    }
+    last_collision_[i] = now_;
+    last_collision_[j] = now_;
+    ++count_[i];
+    ++count_[j];
+    ++counters_.collisions;
+    ++pair_collisions_[std::min(si, sj) * ns_ + std::max(si, sj)];
+    if (sink_) {
+        rec.vi_after = p_.v[i];
+        rec.vj_after = p_.v[j];
+        if (rough_) {
+            rec.wi_after = p_.w[i];
+            rec.wj_after = p_.w[j];
+        }
+        rec.impulse = impulse;
+        sink_->on_collision(rec);
+    }
+    predict(i);
+    queue_.update(i, ev_time_[i]);
+    predict(j);
+    queue_.update(j, ev_time_[j]);
+}
+
+template <int D>
+void EventDrivenEngine<D>::cross_cell(std::uint32_t i, int code) {
+    move(i);
+    const int a = code / 2;
+    const int dir = (code % 2) ? 1 : -1;
+    cell_remove(i);
+    auto& c = cc_[i][a];
+    c += dir;
+    if (c >= ncell_[a]) {
+        c = 0;
+        p_.r[i][a] -= box_.length[a];
+    } else if (c < 0) {
+        c = ncell_[a] - 1;
+        p_.r[i][a] += box_.length[a];
+    }
+    cell_insert(i, cell_id(cc_[i]));
+    ++counters_.cell_crossings;
+    predict(i);
+    queue_.update(i, ev_time_[i]);
+}
+
+template <int D>
+void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
+    move(i);
+    const int a = code / 2;
+    // Static elastic wall: the normal velocity is reversed (only if still moving into the wall).
+    const bool upper = code % 2;
+    if ((upper && p_.v[i][a] > 0) || (!upper && p_.v[i][a] < 0)) p_.v[i][a] = -p_.v[i][a];
+    ++count_[i];
+    ++counters_.wall_hits;
+    predict(i);
+    queue_.update(i, ev_time_[i]);
+}
+
+template <int D>
+typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(double t_limit,
+                                                                   std::uint64_t collision_limit,
+                                                                   const std::atomic<bool>* interrupt) {
+    if (p_.size() == 0) {
+        now_ = t_limit;
+        return Stop::TimeLimit;
+    }
+    std::uint32_t check = 0;
+    while (true) {
+        if (interrupt && (++check & 1023u) == 0 && interrupt->load(std::memory_order_relaxed)) {
+            return Stop::Interrupted;
+        }
+        const double te = queue_.top_time();
+        if (te > t_limit) {
+            now_ = t_limit;
+            return Stop::TimeLimit;
+        }
+        if (te >= 1e299) return Stop::NoEvents;
+        const std::uint32_t i = queue_.top();
+        now_ = te;
+        ++counters_.events;
+        switch (ev_kind_[i]) {
+            case kCollision: {
+                const auto j = static_cast<std::uint32_t>(ev_partner_[i]);
+                if (count_[j] != ev_count_[i]) {
+                    ++counters_.stale_events;
+                    move(i);
+                    predict(i);
+                    queue_.update(i, ev_time_[i]);
+                    continue;
+                }
+                collide(i, j);
+                if (counters_.collisions >= collision_limit) return Stop::CollisionLimit;
+                break;
+            }
+            case kCell: cross_cell(i, ev_partner_[i]); break;
+            case kWall: hit_wall(i, ev_partner_[i]); break;
+            default:
+                move(i);
+                predict(i);
+                queue_.update(i, ev_time_[i]);
+                break;
+        }
+    }
+}
+
+template <int D>
+void EventDrivenEngine<D>::synchronize() {
+    for (std::uint32_t i = 0; i < p_.size(); ++i) move(i);
+}
+
+template <int D>
+void EventDrivenEngine<D>::velocities_changed() {
+    synchronize();
+    for (std::uint32_t i = 0; i < p_.size(); ++i) ++count_[i];
+    for (std::uint32_t i = 0; i < p_.size(); ++i) predict(i);
+    queue_.rebuild([this](std::uint32_t i) { return ev_time_[i]; });
+    ++counters_.full_reschedules;
+}
+
+template class EventDrivenEngine<2>;
+template class EventDrivenEngine<3>;
+
+}  // namespace gran

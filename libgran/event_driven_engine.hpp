@@ -1,0 +1,138 @@
+#pragma once
+// Event-driven molecular dynamics of inelastic hard disks (D = 2) and spheres (D = 3), one templated
+// code path. Design (see docs/architecture.md):
+//  - structure-of-arrays particle state with per-particle clocks (lazy position updates);
+//  - cell list (cells at least one largest diameter wide) with cell-crossing events;
+//  - one pending event per particle, validated lazily with per-particle collision counters;
+//  - indexed binary heap keyed by particle (O(log N) per event), no allocation per event;
+//  - round-off-proof detection: an approaching pair that already overlaps collides now, a receding
+//    one is ignored, and no event is ever scheduled before the current time;
+//  - the TC model against inelastic collapse (Luding & McNamara, Granular Matter 1, 113 (1998)):
+//    a collision within tc of a previous collision of either partner is elastic. Counted.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "libgran/box.hpp"
+#include "libgran/collision_record.hpp"
+#include "libgran/event_queue.hpp"
+#include "libgran/particles.hpp"
+#include "species/collision_rules.hpp"
+#include "species/species.hpp"
+
+namespace gran {
+
+struct EngineSettings {
+    bool tc_guard = true;  // TC model on by default
+    double tc = 1e-6;      // [time]
+};
+
+struct EngineCounters {
+    std::uint64_t events = 0;
+    std::uint64_t collisions = 0;
+    std::uint64_t cell_crossings = 0;
+    std::uint64_t wall_hits = 0;
+    std::uint64_t stale_events = 0;        // invalidated predictions popped and recomputed
+    std::uint64_t tc_collisions = 0;       // collisions made elastic by the TC guard
+    std::uint64_t overlap_collisions = 0;  // approaching pairs found overlapping (round-off) and collided at once
+    std::uint64_t full_reschedules = 0;    // all events recomputed (e.g. after thermostat kicks)
+};
+
+// Collision time of two spheres at separation dr, relative velocity dv, contact distance sigma.
+// Returns 0 for an approaching overlapping pair (round-off) and +inf for receding or missing pairs.
+// Stable root: dt = c / (-b + sqrt(b^2 - dv^2 c)) avoids cancellation.
+template <int D>
+inline double pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sigma) {
+    const double b = dr.dot(dv);
+    if (b >= 0.0) return kInf;
+    const double c = dr.squaredNorm() - sigma * sigma;
+    if (c <= 0.0) return 0.0;
+    const double disc = b * b - dv.squaredNorm() * c;
+    if (disc <= 0.0) return kInf;
+    return c / (-b + std::sqrt(disc));
+}
+
+template <int D>
+class EventDrivenEngine {
+public:
+    enum class Stop { TimeLimit, CollisionLimit, Interrupted, NoEvents };
+
+    EventDrivenEngine(const Box<D>& box, const SpeciesTable& table, Particles<D> particles,
+                      EngineSettings settings);
+
+    // Processes events up to time t_limit; stops early once the total collision count reaches
+    // collision_limit, or when *interrupt becomes true (checked every 1024 events).
+    Stop advance(double t_limit, std::uint64_t collision_limit,
+                 const std::atomic<bool>* interrupt = nullptr);
+
+    double now() const { return now_; }
+    const Particles<D>& particles() const { return p_; }
+    const Box<D>& box() const { return box_; }
+    const EngineCounters& counters() const { return counters_; }
+    // Collisions per unordered species pair, index min(a,b) * ns + max(a,b).
+    const std::vector<std::uint64_t>& pair_collisions() const { return pair_collisions_; }
+
+    // Brings every particle to the current time (positions exact at now()).
+    void synchronize();
+    // Velocity access for drivers: call synchronize() first, change velocities, then
+    // velocities_changed() to invalidate and recompute every pending event.
+    Particles<D>& particles_for_update() { return p_; }
+    void velocities_changed();
+
+    void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
+
+private:
+    enum Kind : std::uint8_t { kNone, kCollision, kCell, kWall };
+
+    void move(std::uint32_t i) {
+        p_.r[i] += p_.v[i] * (now_ - p_.t[i]);
+        p_.t[i] = now_;
+    }
+    void predict(std::uint32_t i);
+    void collide(std::uint32_t i, std::uint32_t j);
+    void cross_cell(std::uint32_t i, int code);
+    void hit_wall(std::uint32_t i, int code);
+    void build_cells();
+    void cell_insert(std::uint32_t i, std::int32_t c);
+    void cell_remove(std::uint32_t i);
+    std::int32_t cell_id(const std::array<std::int32_t, D>& cc) const;
+
+    Box<D> box_;
+    Particles<D> p_;
+    EngineSettings settings_;
+    EngineCounters counters_;
+    double now_ = 0;
+
+    // species tables, flattened
+    std::size_t ns_ = 0;
+    std::vector<double> mass_, diameter_, inertia_;
+    std::vector<double> sigma_pair_, alpha_pair_, beta_pair_;
+    bool rough_ = false;
+
+    // per particle
+    std::vector<std::uint32_t> count_;  // collision counter (velocity changes)
+    std::vector<double> last_collision_;
+    std::vector<double> ev_time_;
+    std::vector<std::int32_t> ev_partner_;
+    std::vector<std::uint32_t> ev_count_;
+    std::vector<std::uint8_t> ev_kind_;
+    EventQueue queue_;
+
+    // cell list
+    std::array<std::int32_t, D> ncell_{};
+    Vec<D> cell_width_;
+    std::vector<std::array<std::int32_t, D>> cc_;
+    std::vector<std::int32_t> cell_of_, next_, prev_, head_;
+    std::vector<std::int32_t> neighbours_;  // per cell, nbr_per_cell_ entries (-1 = none)
+    int nbr_per_cell_ = 0;
+
+    std::vector<std::uint64_t> pair_collisions_;
+    CollisionSink<D>* sink_ = nullptr;
+};
+
+extern template class EventDrivenEngine<2>;
+extern template class EventDrivenEngine<3>;
+
+}  // namespace gran

@@ -1,0 +1,96 @@
+// Event-driven engine: conservation laws and event bookkeeping on small systems.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "libgran/event_driven_engine.hpp"
+#include "libgran/placement.hpp"
+
+namespace gran {
+namespace {
+
+SpeciesTable make_table(int ns, double alpha, double beta, double mass_ratio, std::size_t n_each,
+                        double q) {
+    SpeciesTable t;
+    for (int s = 0; s < ns; ++s) {
+        Species sp;
+        sp.name = s == 0 ? "a" : "b";
+        sp.mass = s == 0 ? mass_ratio : 1.0;
+        sp.diameter = s == 0 ? 1.0 : 0.8;
+        sp.inertia_factor = q;
+        sp.count = n_each;
+        t.species.push_back(sp);
+    }
+    PairCoefficients c;
+    c.alpha = alpha;
+    c.beta = beta;
+    t.pairs.assign(std::size_t(ns * ns), c);
+    return t;
+}
+
+template <int D>
+Box<D> cube_for(const SpeciesTable& t, double phi, bool periodic) {
+    Box<D> box;
+    const double vd = D == 2 ? M_PI / 4 : M_PI / 6;
+    double v = 0;
+    for (const auto& s : t.species) v += double(s.count) * vd * std::pow(s.diameter, D);
+    box.length = Vec<D>::Constant(std::pow(v / phi, 1.0 / D));
+    box.periodic.fill(periodic);
+    return box;
+}
+
+template <int D>
+double kinetic_energy(const Particles<D>& p, const SpeciesTable& t) {
+    double e = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const auto& s = t.species[p.species[i]];
+        e += 0.5 * s.mass * p.v[i].squaredNorm();
+        if (p.rotating()) e += 0.5 * s.inertia_factor * s.mass * s.diameter * s.diameter / 4 * ang_squared<D>(p.w[i]);
+    }
+    return e;
+}
+
+template <int D>
+Vec<D> momentum(const Particles<D>& p, const SpeciesTable& t) {
+    Vec<D> m = Vec<D>::Zero();
+    for (std::size_t i = 0; i < p.size(); ++i) m += t.species[p.species[i]].mass * p.v[i];
+    return m;
+}
+
+template <int D>
+void check_elastic_conservation(int ns, bool periodic, std::uint64_t collisions, double beta, double q) {
+    const auto table = make_table(ns, 1.0, beta, 3.0, ns == 1 ? 400 : 200, q);
+    const auto box = cube_for<D>(table, 0.2, periodic);
+    Rng rng = make_rng(7, Stream::Placement);
+    auto p = place_random<D>(box, table, rng);
+    maxwellian_velocities<D>(p, table, 1.0, rng);
+    const double e0 = kinetic_energy<D>(p, table);
+    const Vec<D> p0 = momentum<D>(p, table);
+    EventDrivenEngine<D> engine(box, table, p, EngineSettings{});
+    engine.advance(kInf, collisions);
+    engine.synchronize();
+    const double e1 = kinetic_energy<D>(engine.particles(), table);
+    EXPECT_EQ(engine.counters().collisions, collisions);
+    EXPECT_NEAR(e1 / e0, 1.0, 1e-10);
+    if (periodic) {
+        EXPECT_LT((momentum<D>(engine.particles(), table) - p0).norm(), 1e-9);
+    }
+    // No overlaps at the end: every pair at least its contact distance apart (to round-off).
+    const auto& q_ = engine.particles();
+    double worst = 1;
+    for (std::size_t i = 0; i < q_.size(); ++i) {
+        for (std::size_t j = i + 1; j < q_.size(); ++j) {
+            const double sig = 0.5 * (table.species[q_.species[i]].diameter + table.species[q_.species[j]].diameter);
+            worst = std::min(worst, box.separation(q_.r[i], q_.r[j]).norm() / sig);
+        }
+    }
+    EXPECT_GT(worst, 1 - 1e-9);
+}
+
+TEST(EventDrivenEngine, ElasticDisksConserveEnergyAndMomentum) { check_elastic_conservation<2>(1, true, 200000, -1, 0.5); }
+TEST(EventDrivenEngine, ElasticSpheresConserveEnergyAndMomentum) { check_elastic_conservation<3>(1, true, 200000, -1, 0.4); }
+TEST(EventDrivenEngine, ElasticBinaryDisksBetweenWallsConserveEnergy) { check_elastic_conservation<2>(2, false, 200000, -1, 0.5); }
+TEST(EventDrivenEngine, PerfectlyRoughSpheresConserveEnergy) { check_elastic_conservation<3>(2, true, 100000, 1.0, 0.4); }
+
+}  // namespace
+}  // namespace gran
