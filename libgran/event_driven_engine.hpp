@@ -70,6 +70,12 @@ public:
     double now() const { return now_; }
     const Particles<D>& particles() const { return p_; }
     const Box<D>& box() const { return box_; }
+    double species_mass(std::uint32_t s) const { return mass_[s]; }
+    double species_diameter(std::uint32_t s) const { return diameter_[s]; }
+    double species_inertia(std::uint32_t s) const {
+        return inertia_[s] * mass_[s] * diameter_[s] * diameter_[s] / 4;
+    }
+    std::size_t species_count() const { return ns_; }
     const EngineCounters& counters() const { return counters_; }
     // Collisions per unordered species pair, index min(a,b) * ns + max(a,b).
     const std::vector<std::uint64_t>& pair_collisions() const { return pair_collisions_; }

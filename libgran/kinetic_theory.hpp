@@ -62,8 +62,8 @@ double enskog_collision_frequency(int d, double n, double sigma, double chi, dou
 // Frequency with which ONE particle of species i collides with particles of species j (density
 // n_j), both Maxwellian (T_i, T_j); g = v_i - v_j is Gaussian with variance s2 = T_i/m_i + T_j/m_j
 // per component, so nu_ij = n_j chi_ij sigma_ij^(d-1) B_1 <|g|>:
-//   nu_ij = S' n_j chi_ij sigma_ij^(d-1) sqrt(2 (T_i/m_i + T_j/m_j)),  S' = pi^((d-1)/2) /
-//   Gamma(d/2).
+//   nu_ij = S' n_j chi_ij sigma_ij^(d-1) sqrt(2 (T_i/m_i + T_j/m_j)),
+//   S' = pi^((d-1)/2) / Gamma(d/2)  (sqrt(pi) in 2D, 2 pi in 3D).
 // With equal species, sum_j nu_ij = enskog_collision_frequency (sqrt(2 * 2T/m) = 2 sqrt(T/m)).
 double enskog_pair_collision_frequency(int d, double n_j, double sigma_ij, double chi_ij, double Ti,
                                        double mi, double Tj, double mj);
@@ -72,7 +72,7 @@ double enskog_pair_collision_frequency(int d, double n_j, double sigma_ij, doubl
 // (d/2) dT/dt = R (monodisperse R = -(1-alpha^2) T omega / 2) gives dT/dt = -zeta T with
 // zeta = (1 - alpha^2) omega(T) / d and omega ~ sqrt(T), hence
 //   T(t) = T0 / (1 + t/t0)^2,   t0 = 2 / zeta(T0) = 2 d / ((1 - alpha^2) omega(T0)).
-// haff_time_scale throws for alpha = 1 (no cooling) or |alpha| > 1.
+// haff_time_scale throws unless 0 <= alpha < 1 (alpha = 1: no cooling) and omega0 > 0.
 double haff_time_scale(int d, double alpha, double omega0);
 double haff_temperature(double T0, double t0, double t);
 

@@ -192,6 +192,12 @@ YAML::Node check_value(const ParamSpec& s, const YAML::Node& n, const Where& w) 
 
 }  // namespace
 
+YAML::Node child(const YAML::Node& map, const std::string& key) {
+    if (!map.IsDefined() || !map.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+    YAML::Node c = map[key];
+    return c.IsDefined() ? c : YAML::Node(YAML::NodeType::Undefined);
+}
+
 std::string describe(const ParamSpec& s) {
     std::string t;
     switch (s.type) {
@@ -239,7 +245,7 @@ Params read_params(const YAML::Node& node, const Schema& schema, const Where& wh
         }
     }
     for (const auto& s : schema) {
-        const YAML::Node given = node.IsMap() ? node[s.name] : YAML::Node();
+        const YAML::Node given = child(node, s.name);
         if (given.IsDefined() && !given.IsNull()) {
             out[s.name] = check_value(s, given, where.child(s.name));
         } else if (!s.default_value.empty()) {
@@ -284,7 +290,8 @@ std::vector<std::string> Params::strings(const std::string& key) const {
 }
 
 void Params::fail(const std::string& key, const std::string& message) const {
-    const YAML::Node n = source_.IsMap() && source_[key].IsDefined() ? source_[key] : source_;
+    const YAML::Node c = child(source_, key);
+    const YAML::Node n = c.IsDefined() ? c : source_;
     gran::fail(key.empty() ? where_ : where_.child(key), n, message);
 }
 

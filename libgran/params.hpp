@@ -70,6 +70,10 @@ private:
     Where where_;
 };
 
+// map[key] when map is a map holding key; otherwise an undefined node. (yaml-cpp's const
+// operator[] returns an invalid node for absent keys, on which most calls throw.)
+YAML::Node child(const YAML::Node& map, const std::string& key);
+
 // Validates `node` (a map, or null for an empty section) against `schema`. Unknown keys, wrong types,
 // out-of-range values and missing required keys are SceneErrors naming file:line:column and key.
 // Keys in `passthrough` are accepted without checks (e.g. the "type" key that selected the plugin).

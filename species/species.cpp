@@ -110,7 +110,7 @@ SpeciesTable read_species(const YAML::Node& species, const YAML::Node& interacti
     }
     if (any_fraction) {
         for (std::size_t k = 0; k < species.size(); ++k) {
-            if (species[k]["count"].IsDefined()) {
+            if (child(species[k], "count").IsDefined()) {
                 fail(ws.item(k), species[k],
                      "give either 'count' for every species or 'number_fraction' for every species");
             }
@@ -130,8 +130,10 @@ SpeciesTable read_species(const YAML::Node& species, const YAML::Node& interacti
     if (interactions.IsDefined() && !interactions.IsNull() && !interactions.IsMap()) {
         fail(wi, interactions, "expected a map (law, its parameters, pairs)");
     }
-    const std::string law_name = interactions["law"] ? interactions["law"].as<std::string>() : "constant_restitution";
-    const PairLaw& law = find_law(law_name, wi.child("law"), interactions["law"]);
+    const YAML::Node law_node = child(interactions, "law");
+    if (law_node.IsDefined() && !law_node.IsScalar()) fail(wi.child("law"), law_node, "expected the name of a pair law");
+    const std::string law_name = law_node.IsDefined() ? law_node.as<std::string>() : "constant_restitution";
+    const PairLaw& law = find_law(law_name, wi.child("law"), law_node);
     Schema schema = law.schema;
     schema.push_back(text("law", "constant_restitution", "default pair law of every pair"));
     ParamSpec pairs_spec;
@@ -148,13 +150,15 @@ SpeciesTable read_species(const YAML::Node& species, const YAML::Node& interacti
     table.pairs.assign(ns * ns, base);
     resolved_interactions = ip.resolved();
     if (ip.has("pairs")) {
-        const YAML::Node pairs = interactions["pairs"];
+        const YAML::Node pairs = child(interactions, "pairs");
         YAML::Node resolved_pairs(YAML::NodeType::Sequence);
         for (std::size_t k = 0; k < pairs.size(); ++k) {
             const Where wk = wi.child("pairs").item(k);
             const YAML::Node entry = pairs[k];
-            const std::string pl_name = entry.IsMap() && entry["law"] ? entry["law"].as<std::string>() : law_name;
-            const PairLaw& pl = find_law(pl_name, wk.child("law"), entry["law"]);
+            const YAML::Node pl_node = child(entry, "law");
+            if (pl_node.IsDefined() && !pl_node.IsScalar()) fail(wk.child("law"), pl_node, "expected the name of a pair law");
+            const std::string pl_name = pl_node.IsDefined() ? pl_node.as<std::string>() : law_name;
+            const PairLaw& pl = find_law(pl_name, wk.child("law"), pl_node);
             Schema ps = pair_override_schema();
             ps.insert(ps.end(), pl.schema.begin(), pl.schema.end());
             // Parameters not given for the pair default to the interactions' values of the same law.

@@ -1,0 +1,17 @@
+// No energy injection: the gas cools freely (Haff's law in the homogeneous regime).
+#include "drivers/driver.hpp"
+
+namespace gran {
+namespace {
+
+template <int D>
+class FreeCooling final : public Driver<D> {
+public:
+    FreeCooling(const Params&, const SceneInfo&) {}
+};
+
+const bool registered = register_plugin<Driver, FreeCooling>(
+    "none", "no energy injection: free cooling (the default when `drivers` is empty)", {});
+
+}  // namespace
+}  // namespace gran

@@ -1,0 +1,33 @@
+#pragma once
+// Running a scene: build the initial state, equilibrate, measure, write the HDF5 result and the
+// human-readable summary. Interruptible (SIGINT/SIGTERM): what was measured so far is written.
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "libgran/scene.hpp"
+
+namespace gran {
+
+struct RunOptions {
+    std::string output;  // result file (.h5); the summary goes beside it (.summary.yaml)
+    bool progress = true;
+    bool terminal = false;  // redraw a progress line (stderr is a terminal)
+    std::vector<std::string> command_line;
+    const std::atomic<bool>* interrupt = nullptr;
+};
+
+struct RunReport {
+    bool completed = false;  // false when interrupted
+    std::string output;
+    std::string summary_file;
+    YAML::Node summary;
+};
+
+// Places the particles as the scene says (throws SceneError naming the box on failure). Used by
+// `gran check` to refuse impossible scenes before running.
+void check_placement(const Scene& scene);
+
+RunReport run_scene(const Scene& scene, const RunOptions& options);
+
+}  // namespace gran

@@ -1,0 +1,68 @@
+#pragma once
+// A scene file, validated and resolved: every key checked against its declaration, defaults filled
+// in, the box derived, the initial configuration described. `resolved` is written to results so a
+// run can be repeated exactly.
+#include <yaml-cpp/yaml.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "libgran/event_driven_engine.hpp"
+#include "libgran/params.hpp"
+#include "species/species.hpp"
+
+namespace gran {
+
+struct PluginEntry {
+    std::string type;
+    std::string name;  // result group name (defaults to type)
+    Params params;
+};
+
+enum class ScheduleUnit { CollisionsPerParticle, Time };
+
+struct Schedule {
+    ScheduleUnit unit = ScheduleUnit::CollisionsPerParticle;
+    double equilibration = 0;
+    double measurement = 0;
+    double sample_interval = 1;
+};
+
+struct Scene {
+    std::string file;
+    YAML::Node resolved;
+    std::string title;
+    int dimension = 2;
+    std::uint64_t seed = 1;
+    SpeciesTable species;
+    std::vector<double> box_length;
+    std::vector<bool> periodic;
+    double packing_fraction = 0;
+    std::string placement = "random";
+    double temperature = 1;
+    EngineSettings engine;
+    Schedule schedule;
+    std::vector<PluginEntry> drivers;
+    std::vector<PluginEntry> observables;
+    std::size_t frames = 0;
+    double progress_interval = 10;
+    std::string box_location;  // "file:line:col: box" for errors found when placing particles
+};
+
+// Reads and validates a scene file; `overrides` are "dotted.key=value" (--set) applied first.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+// Validates an already parsed YAML document (file names errors).
+Scene parse_scene(const YAML::Node& root, const std::string& file);
+// Applies one "a.b.0.c=value" override to a YAML document.
+void apply_override(YAML::Node& root, const std::string& assignment);
+
+// Schemas of the scene sections, for `gran list scene`.
+struct SectionDoc {
+    std::string name;
+    std::string summary;
+    Schema schema;
+};
+std::vector<SectionDoc> scene_sections();
+
+}  // namespace gran

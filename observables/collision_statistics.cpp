@@ -1,0 +1,87 @@
+// Collision counts and rates: the collision frequency per particle omega = 2 dN_coll / (N dt) (each
+// collision involves two particles) and, per species pair (a, b), the frequency with which one
+// particle of species a collides with particles of species b:
+// nu_ab = dN_ab (x2 if a == b) / (N_a dt). Rates are ratios of time averages with jackknife errors.
+#include <fmt/format.h>
+
+#include <vector>
+
+#include "observables/observable.hpp"
+
+namespace gran {
+namespace {
+
+template <int D>
+class CollisionStatistics final : public Observable<D> {
+public:
+    CollisionStatistics(const Params&, const SceneInfo& info) : table_(*info.species) {
+        const std::size_t ns = table_.size();
+        pair_increments_.resize(ns * ns);
+    }
+
+    void sample(const SampleContext<D>& ctx) override {
+        const auto& pc = ctx.engine.pair_collisions();
+        const std::uint64_t total = ctx.engine.counters().collisions;
+        if (started_ && ctx.measuring) {
+            dt_.push(ctx.time - last_time_);
+            dtotal_.push(double(total - last_total_));
+            for (std::size_t k = 0; k < pc.size(); ++k) pair_increments_[k].push(double(pc[k] - last_pairs_[k]));
+        }
+        if (ctx.measuring) started_ = true;
+        last_time_ = ctx.time;
+        last_total_ = total;
+        last_pairs_ = pc;
+        n_ = ctx.engine.particles().size();
+        totals_pairs_ = pc;
+        total_ = total;
+        walls_ = ctx.engine.counters().wall_hits;
+    }
+
+    void write(h5::Group& g, YAML::Node& summary) const override {
+        const std::size_t ns = table_.size();
+        g.write_scalar("collisions", static_cast<std::int64_t>(total_));
+        g.write_scalar("wall_hits", static_cast<std::int64_t>(walls_));
+        summary["collisions"] = total_;
+        if (dt_.size() < 2) return;
+        const double scale = 2.0 / double(n_);
+        Estimate omega = ratio_of_means(dtotal_.values(), dt_.values());
+        omega.value *= scale;
+        omega.error *= scale;
+        write_estimate(g, "frequency_per_particle", omega, "1/time", summary);
+        for (std::size_t a = 0; a < ns; ++a) {
+            for (std::size_t b = a; b < ns; ++b) {
+                const auto& inc = pair_increments_[a * ns + b];
+                const std::string pair = table_.species[a].name + "-" + table_.species[b].name;
+                h5::Group gp = g.group("pairs/" + pair);
+                YAML::Node ps;
+                gp.write_scalar("collisions", static_cast<std::int64_t>(totals_pairs_[a * ns + b]));
+                const Estimate r = ratio_of_means(inc.values(), dt_.values());
+                // Frequency seen by one particle of a (colliding with b), and by one of b.
+                const double fa = (a == b ? 2.0 : 1.0) / double(table_.species[a].count);
+                write_estimate(gp, "frequency_" + table_.species[a].name, Estimate{r.value * fa, r.error * fa}, "1/time", ps);
+                if (a != b) {
+                    const double fb = 1.0 / double(table_.species[b].count);
+                    write_estimate(gp, "frequency_" + table_.species[b].name, Estimate{r.value * fb, r.error * fb}, "1/time",
+                                   ps);
+                }
+                summary["pairs"][pair] = ps;
+            }
+        }
+    }
+
+private:
+    const SpeciesTable& table_;
+    bool started_ = false;
+    double last_time_ = 0;
+    std::uint64_t last_total_ = 0, total_ = 0, walls_ = 0;
+    std::vector<std::uint64_t> last_pairs_, totals_pairs_;
+    std::size_t n_ = 1;
+    Series dt_, dtotal_;
+    std::vector<Series> pair_increments_;
+};
+
+const bool registered = register_plugin<Observable, CollisionStatistics>(
+    "collision_statistics", "collision counts and frequencies per particle and per species pair", {});
+
+}  // namespace
+}  // namespace gran

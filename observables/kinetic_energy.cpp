@@ -1,0 +1,53 @@
+// Total kinetic energy (translational + rotational) per particle, as a time series over both the
+// equilibration and the measurement phases (free cooling is analysed from t = 0), with the
+// cumulative collisions per particle at each sample (2 N_coll / N).
+#include <vector>
+
+#include "observables/observable.hpp"
+
+namespace gran {
+namespace {
+
+template <int D>
+class KineticEnergy final : public Observable<D> {
+public:
+    KineticEnergy(const Params&, const SceneInfo& info) : table_(*info.species) {}
+
+    void sample(const SampleContext<D>& ctx) override {
+        const auto& p = ctx.engine.particles();
+        double e = 0;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            const std::uint32_t s = p.species[i];
+            e += 0.5 * table_.species[s].mass * p.v[i].squaredNorm();
+            if (p.rotating()) e += 0.5 * ctx.engine.species_inertia(s) * ang_squared<D>(p.w[i]);
+        }
+        const double per = e / double(p.size());
+        time_.push_back(ctx.time);
+        energy_.push_back(per);
+        phase_.push_back(ctx.measuring ? 1 : 0);
+        cpp_.push_back(2.0 * double(ctx.engine.counters().collisions) / double(p.size()));
+        if (ctx.measuring) measured_.push(per);
+    }
+
+    void write(h5::Group& g, YAML::Node& summary) const override {
+        g.write("time", time_);
+        g.attr_on("time", "unit", "time");
+        g.write("energy_per_particle", energy_);
+        g.attr_on("energy_per_particle", "unit", "energy");
+        g.write("collisions_per_particle", cpp_);
+        g.write("measuring", phase_);
+        if (measured_.size() > 0) write_estimate(g, "mean_energy_per_particle", measured_.estimate(), "energy", summary);
+    }
+
+private:
+    const SpeciesTable& table_;
+    std::vector<double> time_, energy_, cpp_;
+    std::vector<std::int64_t> phase_;
+    Series measured_;
+};
+
+const bool registered = register_plugin<Observable, KineticEnergy>(
+    "kinetic_energy", "total kinetic energy per particle over time (equilibration and measurement)", {});
+
+}  // namespace
+}  // namespace gran

@@ -1,0 +1,51 @@
+#pragma once
+// Measurements. An observable is sampled at the run's sampling times and may subscribe to
+// collisions (collision records are built only when some observable does). Results go to
+// /observables/<name> in the HDF5 file, scalars as datasets with `error` and `unit` attributes.
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+#include "libgran/event_driven_engine.hpp"
+#include "libgran/h5.hpp"
+#include "libgran/registry.hpp"
+#include "libgran/scene_info.hpp"
+#include "libgran/statistics.hpp"
+
+namespace gran {
+
+template <int D>
+struct SampleContext {
+    double time = 0;
+    bool measuring = false;            // false during equilibration
+    std::size_t expected_samples = 0;  // samples the measurement phase will take
+    const EventDrivenEngine<D>& engine;
+    const SpeciesTable& species;
+};
+
+template <int D>
+class Observable {
+public:
+    virtual ~Observable() = default;
+    // Non-null to receive every collision (costs a record per collision; only when asked).
+    virtual CollisionSink<D>* collision_sink() { return nullptr; }
+    virtual void sample(const SampleContext<D>& ctx) = 0;
+    virtual void write(h5::Group& group, YAML::Node& summary) const = 0;
+};
+
+// Writes a scalar estimate as a dataset with `error` and `unit` attributes, and into the summary.
+inline void write_estimate(h5::Group& g, const std::string& name, const Estimate& e, const std::string& unit,
+                           YAML::Node& summary) {
+    g.write_scalar(name, e.value);
+    g.attr_on(name, "error", e.error);
+    g.attr_on(name, "unit", unit);
+    YAML::Node s;
+    s["value"] = e.value;
+    s["error"] = e.error;
+    if (!unit.empty()) s["unit"] = unit;
+    summary[name] = s;
+}
+
+inline const char* component_name(int a) { return a == 0 ? "x" : (a == 1 ? "y" : "z"); }
+
+}  // namespace gran

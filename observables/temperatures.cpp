@@ -1,0 +1,149 @@
+// Per-species, per-component translational temperatures T_{s,a} = m_s <(v_a - U_a)^2> (U: centre-of-
+// mass velocity), rotational temperatures (I <w^2> per rotational degree of freedom), the mixture
+// temperature, temperature ratios gamma = T_s / T_ref (total, per component, rotational; Barrat &
+// Trizac 2002 Tables I-II) and the Sonine coefficient a2 = d/(d+2) <c^4>/<c^2>^2 - 1 per species.
+// Ratios and a2 are ratios of time averages with jackknife errors over decorrelated blocks.
+#include <fmt/format.h>
+
+#include <array>
+#include <vector>
+
+#include "observables/observable.hpp"
+
+namespace gran {
+namespace {
+
+template <int D>
+class Temperatures final : public Observable<D> {
+public:
+    Temperatures(const Params& p, const SceneInfo& info) : table_(*info.species) {
+        const std::string ref = p.has("reference_species") ? p.str("reference_species") : table_.species[0].name;
+        ref_ = table_.index_of(ref);
+        if (ref_ == table_.size()) p.fail("reference_species", "unknown species '" + ref + "'");
+        per_species_.resize(table_.size());
+        rotating_ = table_.rough();
+    }
+
+    void sample(const SampleContext<D>& ctx) override {
+        if (!ctx.measuring) return;
+        const auto& p = ctx.engine.particles();
+        const std::size_t ns = table_.size();
+        Vec<D> mom = Vec<D>::Zero();
+        double mass = 0;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            const double m = table_.species[p.species[i]].mass;
+            mom += m * p.v[i];
+            mass += m;
+        }
+        const Vec<D> u = mom / mass;
+        std::vector<Vec<D>> sum2(ns, Vec<D>::Zero());
+        std::vector<double> sum4(ns, 0), sumr(ns, 0), sumv2(ns, 0);
+        std::vector<std::size_t> count(ns, 0);
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            const std::uint32_t s = p.species[i];
+            const Vec<D> c = p.v[i] - u;
+            const Vec<D> c2 = c.cwiseProduct(c);
+            sum2[s] += c2;
+            const double v2 = c2.sum();
+            sumv2[s] += v2;
+            sum4[s] += v2 * v2;
+            if (rotating_) sumr[s] += ang_squared<D>(p.w[i]);
+            ++count[s];
+        }
+        double t_mix = 0;
+        std::size_t n_mix = 0;
+        for (std::size_t s = 0; s < ns; ++s) {
+            auto& q = per_species_[s];
+            const double m = table_.species[s].mass;
+            const double n = double(count[s]);
+            double t_total = 0;
+            for (int a = 0; a < D; ++a) {
+                const double t = m * sum2[s][a] / n;
+                q.t_comp[a].push(t);
+                t_total += t / D;
+            }
+            q.t.push(t_total);
+            q.v2.push(sumv2[s] / n);
+            q.v4.push(sum4[s] / n);
+            if (rotating_) {
+                const double inertia = table_.species[s].inertia_factor * m * table_.species[s].diameter *
+                                       table_.species[s].diameter / 4;
+                q.t_rot.push(inertia * sumr[s] / n / (D == 2 ? 1.0 : 3.0));
+            }
+            t_mix += t_total * n;
+            n_mix += count[s];
+        }
+        mixture_.push(t_mix / double(n_mix));
+        time_.push(ctx.time);
+    }
+
+    void write(h5::Group& g, YAML::Node& summary) const override {
+        g.write("time", time_.values());
+        g.attr_on("time", "unit", "time");
+        const std::string tunit = "energy";
+        write_estimate(g, "T_mixture", mixture_.estimate(), tunit, summary);
+        g.write("series/T_mixture", mixture_.values());
+        for (std::size_t s = 0; s < table_.size(); ++s) {
+            const auto& q = per_species_[s];
+            const std::string name = table_.species[s].name;
+            h5::Group gs = g.group(name);
+            YAML::Node ss;
+            write_estimate(gs, "T", q.t.estimate(), tunit, ss);
+            gs.write("series/T", q.t.values());
+            for (int a = 0; a < D; ++a) {
+                const std::string c = std::string("T_") + component_name(a);
+                write_estimate(gs, c, q.t_comp[a].estimate(), tunit, ss);
+                gs.write("series/" + c, q.t_comp[a].values());
+            }
+            if (rotating_) {
+                write_estimate(gs, "T_rot", q.t_rot.estimate(), tunit, ss);
+                gs.write("series/T_rot", q.t_rot.values());
+            }
+            if (q.v2.size() > 0) {
+                const double k = double(D) / (D + 2.0);
+                const Estimate a2 = jackknife({q.v4.values(), q.v2.values()}, [k](std::span<const double> m) {
+                    return k * m[0] / (m[1] * m[1]) - 1.0;
+                });
+                write_estimate(gs, "sonine_a2", a2, "", ss);
+            }
+            summary["species"][name] = ss;
+            if (s == ref_) continue;
+            const auto& r = per_species_[ref_];
+            const std::string rname = name + "_over_" + table_.species[ref_].name;
+            h5::Group gr = g.group("ratios/" + rname);
+            YAML::Node rs;
+            write_estimate(gr, "gamma", ratio_of_means(q.t.values(), r.t.values()), "", rs);
+            for (int a = 0; a < D; ++a) {
+                write_estimate(gr, std::string("gamma_") + component_name(a),
+                               ratio_of_means(q.t_comp[a].values(), r.t_comp[a].values()), "", rs);
+            }
+            if (rotating_) write_estimate(gr, "gamma_rot", ratio_of_means(q.t_rot.values(), r.t_rot.values()), "", rs);
+            summary["ratios"][rname] = rs;
+        }
+        g.attr("reference_species", table_.species[ref_].name);
+        g.attr("definition", "T_{s,a} = m_s <(v_a - U_a)^2>, U centre-of-mass velocity; gamma = T_s / T_ref");
+    }
+
+private:
+    struct PerSpecies {
+        Series t;
+        std::array<Series, D> t_comp;
+        Series t_rot;
+        Series v2, v4;
+    };
+    const SpeciesTable& table_;
+    std::size_t ref_ = 0;
+    bool rotating_ = false;
+    std::vector<PerSpecies> per_species_;
+    Series mixture_;
+    Series time_;
+};
+
+const bool registered = register_plugin<Observable, Temperatures>(
+    "temperatures",
+    "per-species and per-component temperatures, rotational temperatures, ratios gamma = T_s/T_ref, "
+    "Sonine a2",
+    {optional(text("reference_species", "", "species whose temperature divides the ratios (default: first)"))});
+
+}  // namespace
+}  // namespace gran
