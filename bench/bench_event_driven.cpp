@@ -1,1 +1,381 @@
-int main() { return 0; }
+// Throughput benchmark of the event-driven engine: collisions per CPU second for monodisperse
+// elastic hard disks and spheres in a periodic square/cubic box, one core, plain timers.
+//
+// Per case: one species (m = 1, sigma = 1, alpha = 1, beta = -1), box from the packing fraction,
+// simple lattice (random insertion cannot reach phi = 0.5 in 2D), Maxwellian velocities at T = 1,
+// equilibration until the lattice has melted (a fixed number of collisions per particle), then a
+// timed run of a fixed number of collisions. Elastic dynamics conserve kinetic energy exactly up to
+// round-off, so every case doubles as a sanity check: relative drift above 1e-9 (or a lattice that
+// did not melt) fails the run with a non-zero exit status.
+//
+//   gran_bench [--quick] [--cases 2d,3d,phi0.5,...] [--n 10000,100000] [--equil C] [--csv PATH]
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "libgran/event_driven_engine.hpp"
+#include "libgran/placement.hpp"
+
+namespace {
+
+using namespace gran;
+
+struct Case {
+    int dim;
+    double phi;
+    std::size_t n;
+    std::string name() const { return fmt::format("{}d_phi{}_N{}", dim, phi, n); }
+};
+
+struct Options {
+    bool quick = false;
+    std::vector<std::string> case_filters;  // substrings of the case name; any match selects
+    std::vector<std::size_t> sizes;         // empty = all
+    std::string csv;
+    std::uint64_t seed = 12345;
+    double equil_per_particle = 20;  // collisions per particle (each collision counts for both)
+    std::uint64_t timed_min = 2'000'000;
+    double timed_per_particle = 20;  // timed collisions >= this many times N
+};
+
+struct Result {
+    Case c;
+    std::uint64_t collisions = 0;
+    double cpu_s = 0, wall_s = 0, setup_s = 0, equil_s = 0;
+    EngineCounters delta;  // counters of the timed part only
+    double energy_rel_err = 0;
+    double momentum_err = 0;
+    double melted_fraction = 0;  // particles whose velocity changed during equilibration
+    bool ok = true;
+    double rate_cpu() const { return double(collisions) / cpu_s; }
+    double rate_wall() const { return double(collisions) / wall_s; }
+    double events_per_s() const { return double(delta.events) / cpu_s; }
+    double per_collision(std::uint64_t x) const { return double(x) / double(collisions); }
+};
+
+double cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+double wall_seconds() {
+    using Clock = std::chrono::steady_clock;
+    return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
+
+SpeciesTable monodisperse(std::size_t n) {
+    SpeciesTable t;
+    Species s;
+    s.name = "grain";
+    s.mass = 1;
+    s.diameter = 1;
+    s.count = n;
+    t.species.push_back(s);
+    PairCoefficients c;
+    c.alpha = 1;
+    c.beta = -1;
+    t.pairs.assign(1, c);
+    return t;
+}
+
+template <int D>
+double kinetic_energy(const Particles<D>& p) {
+    double e = 0;
+    for (const auto& v : p.v) e += 0.5 * v.squaredNorm();  // m = 1
+    return e;
+}
+
+template <int D>
+Vec<D> total_momentum(const Particles<D>& p) {
+    Vec<D> m = Vec<D>::Zero();
+    for (const auto& v : p.v) m += v;
+    return m;
+}
+
+EngineCounters counters_minus(const EngineCounters& a, const EngineCounters& b) {
+    EngineCounters d;
+    d.events = a.events - b.events;
+    d.collisions = a.collisions - b.collisions;
+    d.cell_crossings = a.cell_crossings - b.cell_crossings;
+    d.wall_hits = a.wall_hits - b.wall_hits;
+    d.stale_events = a.stale_events - b.stale_events;
+    d.tc_collisions = a.tc_collisions - b.tc_collisions;
+    d.overlap_collisions = a.overlap_collisions - b.overlap_collisions;
+    d.full_reschedules = a.full_reschedules - b.full_reschedules;
+    return d;
+}
+
+template <int D>
+Result run_case(const Case& c, const Options& opt) {
+    Result res;
+    res.c = c;
+    const double t_setup = wall_seconds();
+    const SpeciesTable table = monodisperse(c.n);
+    Box<D> box;
+    const double vd = D == 2 ? std::numbers::pi / 4 : std::numbers::pi / 6;
+    box.length = Vec<D>::Constant(std::pow(double(c.n) * vd / c.phi, 1.0 / D));
+    box.periodic.fill(true);
+    Rng rng_place = make_rng(opt.seed, Stream::Placement);
+    Rng rng_vel = make_rng(opt.seed, Stream::Velocities);
+    Particles<D> p = place_lattice<D>(box, table, rng_place);
+    maxwellian_velocities<D>(p, table, 1.0, rng_vel);
+    const double e0 = kinetic_energy<D>(p);
+    const Vec<D> p0 = total_momentum<D>(p);
+    const std::vector<Vec<D>> v0 = p.v;
+    EventDrivenEngine<D> engine(box, table, std::move(p), EngineSettings{});
+    res.setup_s = wall_seconds() - t_setup;
+
+    // Equilibration: equil_per_particle collisions per particle = equil_per_particle * N / 2.
+    const double t_equil = wall_seconds();
+    const auto n_equil = static_cast<std::uint64_t>(opt.equil_per_particle * double(c.n) / 2);
+    engine.advance(kInf, n_equil);
+    res.equil_s = wall_seconds() - t_equil;
+    {
+        std::size_t changed = 0;
+        const auto& v = engine.particles().v;
+        for (std::size_t i = 0; i < c.n; ++i) changed += v[i] != v0[i] ? 1 : 0;
+        res.melted_fraction = double(changed) / double(c.n);
+    }
+
+    // Timed part.
+    const std::uint64_t n_timed = std::max<std::uint64_t>(
+        opt.timed_min, static_cast<std::uint64_t>(opt.timed_per_particle * double(c.n)));
+    const EngineCounters before = engine.counters();
+    const double w0 = wall_seconds();
+    const double c0 = cpu_seconds();
+    engine.advance(kInf, before.collisions + n_timed);
+    const double c1 = cpu_seconds();
+    const double w1 = wall_seconds();
+    res.delta = counters_minus(engine.counters(), before);
+    res.collisions = res.delta.collisions;
+    res.cpu_s = c1 - c0;
+    res.wall_s = w1 - w0;
+
+    // Sanity: elastic dynamics conserve energy and momentum; the lattice must have melted.
+    engine.synchronize();
+    const double e1 = kinetic_energy<D>(engine.particles());
+    res.energy_rel_err = std::abs(e1 - e0) / e0;
+    res.momentum_err = (total_momentum<D>(engine.particles()) - p0).norm() / std::sqrt(2 * e0);
+    if (res.collisions != n_timed) {
+        std::fprintf(stderr, "WARNING %s: %llu collisions timed, %llu requested\n",
+                     c.name().c_str(), static_cast<unsigned long long>(res.collisions),
+                     static_cast<unsigned long long>(n_timed));
+        res.ok = false;
+    }
+    if (!(res.energy_rel_err <= 1e-9)) {
+        std::fprintf(stderr,
+                     "WARNING %s: kinetic energy not conserved, relative error %.3e > 1e-9\n",
+                     c.name().c_str(), res.energy_rel_err);
+        res.ok = false;
+    }
+    if (!(res.momentum_err <= 1e-9)) {
+        std::fprintf(stderr, "WARNING %s: momentum not conserved, |dP|/sqrt(2E) = %.3e > 1e-9\n",
+                     c.name().c_str(), res.momentum_err);
+        res.ok = false;
+    }
+    if (res.melted_fraction < 0.99) {
+        std::fprintf(
+            stderr,
+            "WARNING %s: only %.4f of the particles collided during equilibration; lattice "
+            "not melted\n",
+            c.name().c_str(), res.melted_fraction);
+        res.ok = false;
+    }
+    return res;
+}
+
+std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    while (start <= s.size()) {
+        const std::size_t end = s.find(',', start);
+        const std::string tok =
+            s.substr(start, end == std::string::npos ? std::string::npos : end - start);
+        if (!tok.empty()) out.push_back(tok);
+        if (end == std::string::npos) break;
+        start = end + 1;
+    }
+    return out;
+}
+
+void usage(std::FILE* f) {
+    std::fprintf(
+        f,
+        "usage: gran_bench [--quick] [--cases F1,F2,...] [--n N1,N2,...] [--csv PATH] "
+        "[--equil C] [--seed S]\n"
+        "  Collisions per CPU second of the event-driven engine, elastic monodisperse hard\n"
+        "  disks (phi 0.1, 0.5) and spheres (phi 0.1, 0.2, 0.3), N = 1e4 and 1e5, periodic.\n"
+        "  --quick    short smoke run (fewer collisions)\n"
+        "  --cases    keep cases whose name (e.g. 3d_phi0.3_N100000) contains any filter\n"
+        "  --n        keep only these particle numbers\n"
+        "  --csv      write case,engine,dimension,N,packing_fraction,rate,unit to PATH\n"
+        "  Exits 1 if energy/momentum conservation or lattice melting fails in any case.\n");
+}
+
+std::optional<Options> parse(int argc, char** argv) {
+    Options opt;
+    std::optional<double> equil;
+    for (int k = 1; k < argc; ++k) {
+        const std::string a = argv[k];
+        auto value = [&]() -> std::optional<std::string> {
+            if (k + 1 >= argc) {
+                std::fprintf(stderr, "gran_bench: %s needs a value\n", a.c_str());
+                return std::nullopt;
+            }
+            return std::string(argv[++k]);
+        };
+        try {
+            if (a == "--quick") {
+                opt.quick = true;
+            } else if (a == "--cases") {
+                auto v = value();
+                if (!v) return std::nullopt;
+                for (auto& s : split(*v)) opt.case_filters.push_back(s);
+            } else if (a == "--n") {
+                auto v = value();
+                if (!v) return std::nullopt;
+                for (auto& s : split(*v)) {
+                    const double x = std::stod(s);  // accepts 1e4
+                    if (!(x >= 1)) throw std::invalid_argument(s);
+                    opt.sizes.push_back(static_cast<std::size_t>(std::llround(x)));
+                }
+            } else if (a == "--csv") {
+                auto v = value();
+                if (!v) return std::nullopt;
+                opt.csv = *v;
+            } else if (a == "--equil") {
+                auto v = value();
+                if (!v) return std::nullopt;
+                equil = std::stod(*v);
+                if (!(*equil >= 0)) throw std::invalid_argument(*v);
+            } else if (a == "--seed") {
+                auto v = value();
+                if (!v) return std::nullopt;
+                opt.seed = std::stoull(*v);
+            } else if (a == "-h" || a == "--help") {
+                usage(stdout);
+                std::exit(0);
+            } else {
+                std::fprintf(stderr, "gran_bench: unknown argument '%s'\n", a.c_str());
+                return std::nullopt;
+            }
+        } catch (const std::exception&) {
+            std::fprintf(stderr, "gran_bench: bad value for %s\n", a.c_str());
+            return std::nullopt;
+        }
+    }
+    if (opt.quick) {
+        opt.equil_per_particle = 10;
+        opt.timed_min = 200'000;
+        opt.timed_per_particle = 2;
+    }
+    if (equil) opt.equil_per_particle = *equil;
+    return opt;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const auto parsed = parse(argc, argv);
+    if (!parsed) {
+        usage(stderr);
+        return 2;
+    }
+    const Options& opt = *parsed;
+
+    std::vector<Case> cases;
+    const std::vector<std::pair<int, double>> geometries = {
+        {2, 0.1}, {2, 0.5}, {3, 0.1}, {3, 0.2}, {3, 0.3}};
+    const std::vector<std::size_t> default_sizes = {10'000, 100'000};
+    for (const auto& [dim, phi] : geometries) {
+        for (std::size_t n : opt.sizes.empty() ? default_sizes : opt.sizes) {
+            Case c{dim, phi, n};
+            bool keep = opt.case_filters.empty();
+            for (const auto& f : opt.case_filters)
+                keep = keep || c.name().find(f) != std::string::npos;
+            if (keep) cases.push_back(c);
+        }
+    }
+    if (cases.empty()) {
+        std::fprintf(stderr, "gran_bench: no case matches the filters\n");
+        return 2;
+    }
+
+    std::printf("gran_bench: event-driven engine, elastic monodisperse, periodic, one core%s\n",
+                opt.quick ? " (--quick)" : "");
+    std::printf("equilibration %g collisions/particle; timed max(%llu, %g N) collisions\n",
+                opt.equil_per_particle, static_cast<unsigned long long>(opt.timed_min),
+                opt.timed_per_particle);
+    const std::string header = fmt::format(
+        "{:<20} {:>3} {:>7} {:>5} {:>12} {:>12} {:>12} {:>8} {:>8} {:>8} {:>7} {:>9} {:>9}", "case",
+        "dim", "N", "phi", "coll/s(cpu)", "coll/s(wall)", "events/s", "ev/coll", "cell/col",
+        "stale/c", "cpu_s", "dE/E", "check");
+    std::printf("%s\n", header.c_str());
+    std::fflush(stdout);
+
+    std::vector<Result> results;
+    bool all_ok = true;
+    for (const Case& c : cases) {
+        Result r = c.dim == 2 ? run_case<2>(c, opt) : run_case<3>(c, opt);
+        all_ok = all_ok && r.ok;
+        std::printf(
+            "%s\n",
+            fmt::format("{:<20} {:>3} {:>7} {:>5} {:>12.4g} {:>12.4g} {:>12.4g} {:>8.3f} "
+                        "{:>8.3f} {:>8.3f} {:>7.2f} {:>9.1e} {:>9}",
+                        c.name(), c.dim, c.n, c.phi, r.rate_cpu(), r.rate_wall(), r.events_per_s(),
+                        r.per_collision(r.delta.events), r.per_collision(r.delta.cell_crossings),
+                        r.per_collision(r.delta.stale_events), r.cpu_s, r.energy_rel_err,
+                        r.ok ? "ok" : "FAILED")
+                .c_str());
+        std::fflush(stdout);
+        results.push_back(r);
+    }
+
+    // How the rate degrades from N = 1e4 to the other sizes, per (dim, phi).
+    std::map<std::pair<int, double>, std::map<std::size_t, double>> by_geometry;
+    for (const auto& r : results) by_geometry[{r.c.dim, r.c.phi}][r.c.n] = r.rate_cpu();
+    for (const auto& [g, rates] : by_geometry) {
+        const auto base = rates.find(10'000);
+        if (base == rates.end()) continue;
+        for (const auto& [n, rate] : rates) {
+            if (n == 10'000) continue;
+            std::printf("ratio vs N=1e4: %dd phi=%g  N=%zu/N=10000 = %.3f (%.4g -> %.4g coll/s)\n",
+                        g.first, g.second, n, rate / base->second, base->second, rate);
+        }
+    }
+
+    if (!opt.csv.empty()) {
+        const std::filesystem::path path(opt.csv);
+        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+        std::ofstream out(path);
+        if (!out) {
+            std::fprintf(stderr, "gran_bench: cannot write %s\n", opt.csv.c_str());
+            return 1;
+        }
+        out << "case,engine,dimension,N,packing_fraction,rate,unit\n";
+        for (const auto& r : results) {
+            out << fmt::format("{},event_driven,{},{},{},{:.0f},collisions/s\n", r.c.name(),
+                               r.c.dim, r.c.n, r.c.phi, r.rate_cpu());
+        }
+        std::printf("wrote %s\n", opt.csv.c_str());
+    }
+    if (!all_ok) {
+        std::fprintf(stderr, "gran_bench: sanity check FAILED (see warnings above)\n");
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,318 @@
+#!/usr/bin/python3
+"""Plot a gran result file (HDF5) as one PNG figure.
+
+Usage:
+    /usr/bin/python3 studies/plot_result.py RESULT.h5 [-o OUT.png]
+
+OUT defaults to RESULT with the suffix .png. The path of the written PNG is printed.
+
+The figure has up to four panels; a panel whose data the result does not hold is skipped:
+  1. temperature series of every species (and of the mixture) during the measurement, with the
+     time averages and their one-standard-error bars in the legend (observable `temperatures`);
+  2. rescaled velocity distributions P(c_x) of every species on a log axis, with error bars and
+     the Gaussian exp(-c^2/2)/sqrt(2 pi) as a dashed reference (observable `velocity_pdf`);
+  3. kinetic energy per particle versus time on log-log axes, with a t^-2 guide (Haff's law)
+     when the gas cools (observable `kinetic_energy`);
+  4. a text panel: temperature ratios gamma, Sonine coefficients a2, collision frequency and
+     performance (events/s, wall time).
+The figure title is the `title:` of the scene stored in /parameters/scene.
+
+Any number of species, 2D or 3D results, and any subset of observables are handled. The script
+exits with status 1 and a message on stderr when the file is missing or is not a gran result.
+Needs h5py, numpy and matplotlib (Debian: python3-h5py python3-numpy python3-matplotlib).
+"""
+
+import argparse
+import math
+import re
+import sys
+from pathlib import Path
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+import numpy as np  # noqa: E402
+
+AXES = ("x", "y", "z")
+
+
+class NotAResult(Exception):
+    """The input is missing or is not a gran result file."""
+
+
+# --- reading -------------------------------------------------------------------------------------
+
+
+def open_result(path):
+    """Open `path` read-only, checking that it is a gran result (H5MD metadata and observables)."""
+    path = Path(path)
+    if not path.is_file():
+        raise NotAResult(f"no such file: {path}")
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        raise NotAResult(f"{path} is not an HDF5 file ({e})") from None
+    if "h5md" not in f or "observables" not in f:
+        f.close()
+        raise NotAResult(f"{path} is not a gran result (no /h5md or /observables group)")
+    return f
+
+
+def as_text(value):
+    """A string dataset's value as str (h5py returns bytes for variable-length strings)."""
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def scalar(group, name):
+    """(value, error) of a scalar dataset, or None when absent; error is nan when not recorded."""
+    if group is None or name not in group or not isinstance(group[name], h5py.Dataset):
+        return None
+    ds = group[name]
+    return float(ds[()]), float(ds.attrs.get("error", math.nan))
+
+
+def array(group, name):
+    """A 1D dataset as a numpy array, or None when absent."""
+    if group is None or name not in group:
+        return None
+    return np.asarray(group[name][()], dtype=float)
+
+
+def observables_of_type(f, type_name):
+    """The observable groups whose `type` attribute is `type_name`."""
+    return [g for g in f["observables"].values()
+            if isinstance(g, h5py.Group) and as_text(g.attrs.get("type", "")) == type_name]
+
+
+def first_observable(f, type_name):
+    groups = observables_of_type(f, type_name)
+    return groups[0] if groups else None
+
+
+def species_groups(group, required):
+    """{name: subgroup} of the per-species subgroups of an observable (those holding `required`)."""
+    return {name: sub for name, sub in group.items()
+            if isinstance(sub, h5py.Group) and required in sub}
+
+
+def scene_title(f):
+    """The scene's `title:` (empty when absent). Uses PyYAML when installed, else a regex."""
+    if "parameters/scene" not in f:
+        return ""
+    text = as_text(f["parameters/scene"][()])
+    try:
+        import yaml
+        scene = yaml.safe_load(text)
+        return str(scene.get("title", "")) if isinstance(scene, dict) else ""
+    except ImportError:
+        match = re.search(r"^title:[ \t]*(.*?)[ \t]*$", text, re.MULTILINE)
+        return match.group(1).strip("'\"") if match else ""
+    except Exception:  # a malformed scene only costs the title
+        return ""
+
+
+# --- formatting ----------------------------------------------------------------------------------
+
+
+def with_error(value, error):
+    """'value ± error' with the error rounded to two significant digits."""
+    if not math.isfinite(error) or error <= 0:
+        return f"{value:.4g}"
+    decimals = max(0, 1 - math.floor(math.log10(error)))
+    return f"{value:.{decimals}f} ± {error:.{decimals}f}"
+
+
+def bin_centres(edges):
+    return 0.5 * (edges[:-1] + edges[1:])
+
+
+# --- panels: each returns False when it has nothing to draw ---------------------------------------
+
+
+def plot_temperatures(ax, f):
+    obs = first_observable(f, "temperatures")
+    time = array(obs, "time")
+    if time is None or time.size == 0:
+        return False
+    curves = [(name, array(g, "series/T"), scalar(g, "T"))
+              for name, g in species_groups(obs, "series").items()]
+    if len(curves) > 1:
+        curves.append(("mixture", array(obs, "series/T_mixture"), scalar(obs, "T_mixture")))
+    drawn = False
+    for name, series, mean in curves:
+        if series is None or series.size != time.size:
+            continue
+        label = name if mean is None else f"{name}: T = {with_error(*mean)}"
+        style = dict(color="k", ls="--", lw=1.0) if name == "mixture" else dict(lw=0.8)
+        ax.plot(time, series, label=label, **style)
+        drawn = True
+    if not drawn:
+        return False
+    values = np.concatenate([s for _, s, _ in curves if s is not None and s.size == time.size])
+    positive = values[values > 0]
+    if positive.size and positive.max() > 20 * positive.min():  # cooling over decades
+        ax.set_yscale("log")
+    ax.set_xlabel("time")
+    ax.set_ylabel("temperature T")
+    ax.set_title("Temperatures during the measurement")
+    ax.legend(fontsize="small")
+    return True
+
+
+def plot_velocity_pdfs(ax, f):
+    obs = first_observable(f, "velocity_pdf")
+    if obs is None:
+        return False
+    drawn = False
+    for name, g in species_groups(obs, "x").items():
+        axis = g["x"]
+        edges, density = array(axis, "scaled_edges"), array(axis, "scaled_density")
+        if edges is None or density is None:
+            continue
+        error = array(axis, "scaled_error")
+        c = bin_centres(edges)
+        shown = density > 0  # empty bins cannot be drawn on a log axis
+        kurt = scalar(axis, "kurtosis")
+        label = name if kurt is None else f"{name} (kurtosis {with_error(*kurt)})"
+        ax.errorbar(c[shown], density[shown], yerr=None if error is None else error[shown],
+                    fmt="o", ms=2.5, capsize=1.5, lw=0.8, label=label)
+        drawn = True
+    if not drawn:
+        return False
+    c = np.linspace(*ax.get_xlim(), 400)
+    ax.plot(c, np.exp(-0.5 * c**2) / math.sqrt(2 * math.pi), "k--", lw=1.0,
+            label=r"Gaussian $e^{-c^2/2}/\sqrt{2\pi}$")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"$c_x = v_x / \sqrt{T_s/m_s}$")
+    ax.set_ylabel(r"$P(c_x)$")
+    ax.set_title("Rescaled velocity distributions")
+    ax.legend(fontsize="small")
+    return True
+
+
+def plot_kinetic_energy(ax, f):
+    obs = first_observable(f, "kinetic_energy")
+    time, energy = array(obs, "time"), array(obs, "energy_per_particle")
+    if time is None or energy is None or time.size == 0:
+        return False
+    shown = (time > 0) & (energy > 0)
+    t, e = time[shown], energy[shown]
+    if t.size == 0:
+        return False
+    ax.loglog(t, e, lw=1.0, label="kinetic energy per particle")
+    measuring = array(obs, "measuring")
+    if measuring is not None and measuring.size == time.size and measuring.any():
+        start = time[np.argmax(measuring > 0)]
+        if start > t[0]:
+            ax.axvline(start, color="gray", ls=":", lw=1.0, label="measurement starts")
+    if e[-1] < 0.1 * e.max():  # the gas cools: Haff's law, E ~ t^-2 at long times
+        ax.loglog(t, e[-1] * (t / t[-1]) ** -2.0, "k--", lw=1.0,
+                  label=r"Haff's law $\propto t^{-2}$")
+        ax.set_ylim(0.5 * e.min(), 2 * e.max())
+    ax.set_xlabel("time")
+    ax.set_ylabel("E / N")
+    ax.set_title("Kinetic energy")
+    ax.legend(fontsize="small")
+    return True
+
+
+def summary_lines(f):
+    """The lines of the text panel (empty when nothing is known)."""
+    lines = []
+    temps = first_observable(f, "temperatures")
+    if temps is not None:
+        for name, g in species_groups(temps, "T").items():
+            parts = [f"T = {with_error(*scalar(g, 'T'))}"]
+            for key, label in (("T_rot", "T_rot"), ("sonine_a2", "a2")):
+                if scalar(g, key) is not None:
+                    parts.append(f"{label} = {with_error(*scalar(g, key))}")
+            lines.append(f"{name}: " + ",  ".join(parts))
+        ratios = temps.get("ratios")
+        for ratio, g in (ratios.items() if isinstance(ratios, h5py.Group) else []):
+            lines.append(f"{ratio.replace('_over_', ' / ')}:")
+            for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
+                if scalar(g, key) is not None:
+                    lines.append(f"    {key} = {with_error(*scalar(g, key))}")
+    coll = first_observable(f, "collision_statistics")
+    if scalar(coll, "frequency_per_particle") is not None:
+        freq = with_error(*scalar(coll, "frequency_per_particle"))
+        lines.append(f"collision frequency per particle: {freq} / time")
+    perf = f.get("performance")
+    if isinstance(perf, h5py.Group):
+        if scalar(perf, "events_per_second") is not None:
+            lines.append(f"events per second: {scalar(perf, 'events_per_second')[0]:.3g}")
+        if scalar(perf, "wall_time") is not None:
+            lines.append(f"wall time: {scalar(perf, 'wall_time')[0]:.3g} s")
+    return lines
+
+
+def plot_summary(ax, f):
+    lines = summary_lines(f)
+    if not lines:
+        return False
+    ax.axis("off")
+    ax.text(0.02, 0.98, "\n".join(lines), va="top", ha="left", family="monospace",
+            fontsize="small", transform=ax.transAxes)
+    ax.set_title("Summary")
+    return True
+
+
+PANELS = (plot_temperatures, plot_velocity_pdfs, plot_kinetic_energy, plot_summary)
+
+
+# --- figure --------------------------------------------------------------------------------------
+
+
+def make_figure(f, source_name):
+    """Draw every panel that has data; returns the figure (None when no panel has data)."""
+    fig, axes = plt.subplots(2, 2, figsize=(12, 9))
+    used = []
+    for ax, panel in zip(axes.flat, PANELS):
+        if panel(ax, f):
+            used.append(ax)
+        else:
+            ax.remove()
+    if not used:
+        plt.close(fig)
+        return None
+    ncols = 1 if len(used) == 1 else 2
+    nrows = math.ceil(len(used) / ncols)
+    grid = fig.add_gridspec(nrows, ncols)
+    for ax, cell in zip(used, grid):  # close the gaps left by skipped panels
+        ax.set_subplotspec(cell)
+    fig.set_size_inches(6 * ncols, 4.5 * nrows)
+    fig.suptitle(f"{scene_title(f) or source_name}\n({source_name})", fontsize="medium")
+    fig.tight_layout()
+    return fig
+
+
+def plot_result(result, out=None):
+    """Plot `result` into `out` (default: result with .png); returns the PNG path."""
+    out = Path(out) if out else Path(result).with_suffix(".png")
+    with open_result(result) as f:
+        fig = make_figure(f, Path(result).name)
+    if fig is None:
+        raise NotAResult(f"{result}: the result holds no observable that can be plotted")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description="Plot a gran result file (HDF5) as a PNG figure.")
+    parser.add_argument("result", help="gran result file (.h5)")
+    parser.add_argument("-o", "--output", help="PNG to write (default: RESULT with .png)")
+    args = parser.parse_args(argv)
+    try:
+        print(plot_result(args.result, args.output))
+    except NotAResult as e:
+        print(f"plot_result: error: {e}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
