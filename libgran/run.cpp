@@ -241,6 +241,7 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
         em << sc.resolved;
         par.write_string("scene", em.c_str());
         par.attr("source_file", sc.file);
+        par.attr("packing_fraction", sc.packing_fraction);
         std::string cmd;
         for (const auto& a : opt.command_line) cmd += (cmd.empty() ? "" : " ") + a;
         par.attr("command_line", cmd);

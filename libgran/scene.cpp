@@ -236,6 +236,10 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     YAML::Node rs, ri;
     sc.species = read_species(child(root, "species"), child(root, "interactions"), tp.has("particles") ? tp.integer("particles") : 0,
                               top, rs, ri);
+    if (tp.has("particles") && std::int64_t(sc.species.total_count()) != tp.integer("particles")) {
+        tp.fail("particles", fmt::format("species counts add up to {}, not to particles = {}",
+                                         sc.species.total_count(), tp.integer("particles")));
+    }
     for (auto& s : sc.species.species) {
         if (s.inertia_factor == 0) s.inertia_factor = d == 2 ? 0.5 : 0.4;
     }
@@ -296,7 +300,6 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     YAML::Node rb;
     for (double l : sc.box_length) rb["lengths"].push_back(l);
     for (bool p : sc.periodic) rb["periodic"].push_back(p);
-    rb["packing_fraction"] = sc.packing_fraction;
     res["box"] = rb;
     sc.box_location = locate(wb, child(root, "box"));
 

@@ -52,7 +52,7 @@ Schema pair_override_schema() {
     between.type = ParamType::StringList;
     between.length = 2;
     between.doc = "the two species names of the pair, e.g. [heavy, light]";
-    return {between, text("law", "", "pair law for this pair (default: the interactions' law)")};
+    return {between, optional(text("law", "", "pair law for this pair (default: the interactions' law)"))};
 }
 
 namespace {
@@ -123,7 +123,11 @@ SpeciesTable read_species(const YAML::Node& species, const YAML::Node& interacti
         table.species.back().count = std::size_t(std::int64_t(table.species.back().count) + diff);
         if (table.species.back().count == 0) fail(ws, species, "number fractions leave the last species empty");
     }
-    for (std::size_t k = 0; k < table.size(); ++k) resolved_species[k]["count"] = table.species[k].count;
+    // The resolved scene gives counts only (number fractions are resolved), so it reruns exactly.
+    for (std::size_t k = 0; k < table.size(); ++k) {
+        resolved_species[k].remove("number_fraction");
+        resolved_species[k]["count"] = table.species[k].count;
+    }
 
     // Interactions: a default law with its parameters, plus per-pair overrides.
     const Where wi = where.child("interactions");
