@@ -34,6 +34,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 import numpy as np  # noqa: E402
+from matplotlib.ticker import FormatStrFormatter  # noqa: E402
 
 AXES = ("x", "y", "z")
 
@@ -97,20 +98,39 @@ def species_groups(group, required):
             if isinstance(sub, h5py.Group) and required in sub}
 
 
-def scene_title(f):
-    """The scene's `title:` (empty when absent). Uses PyYAML when installed, else a regex."""
+def scene_keys(f):
+    """The top-level scalar keys of the stored scene as {key: str}, e.g. title and dimension.
+
+    Uses PyYAML when installed; otherwise reads the unindented `key: value` lines, which is all
+    the figure needs (the scene is written by gran, one top-level key per line).
+    """
     if "parameters/scene" not in f:
-        return ""
+        return {}
     text = as_text(f["parameters/scene"][()])
     try:
         import yaml
-        scene = yaml.safe_load(text)
-        return str(scene.get("title", "")) if isinstance(scene, dict) else ""
     except ImportError:
-        match = re.search(r"^title:[ \t]*(.*?)[ \t]*$", text, re.MULTILINE)
-        return match.group(1).strip("'\"") if match else ""
-    except Exception:  # a malformed scene only costs the title
-        return ""
+        lines = re.findall(r"^(\w+):[ \t]*(\S.*?)[ \t]*$", text, re.MULTILINE)
+        return {key: value.strip("'\"") for key, value in lines}
+    try:
+        scene = yaml.safe_load(text)
+    except yaml.YAMLError:  # a malformed scene only costs the title
+        return {}
+    if not isinstance(scene, dict):
+        return {}
+    return {k: str(v) for k, v in scene.items() if not isinstance(v, (dict, list))}
+
+
+def figure_title(f, source_name):
+    """The scene title, then the file name, dimension and particle count."""
+    keys = scene_keys(f)
+    details = [source_name]
+    if "dimension" in keys:
+        details.append(f"{keys['dimension']}D")
+    if "particles" in keys:
+        details.append(f"N = {keys['particles']}")
+    title = keys.get("title", "")
+    return f"{title}\n({', '.join(details)})" if title else ", ".join(details)
 
 
 # --- formatting ----------------------------------------------------------------------------------
@@ -126,6 +146,18 @@ def with_error(value, error):
 
 def bin_centres(edges):
     return 0.5 * (edges[:-1] + edges[1:])
+
+
+def spans_decades(values, factor=20.0):
+    """Whether the positive entries of `values` span more than `factor` (worth a log axis)."""
+    positive = values[values > 0]
+    return positive.size > 1 and positive.max() > factor * positive.min()
+
+
+def plain_log_labels(axis):
+    """Label the minor ticks of a log axis spanning less than a decade with plain numbers."""
+    axis.set_major_formatter(FormatStrFormatter("%g"))
+    axis.set_minor_formatter(FormatStrFormatter("%g"))
 
 
 # --- panels: each returns False when it has nothing to draw ---------------------------------------
@@ -151,9 +183,10 @@ def plot_temperatures(ax, f):
     if not drawn:
         return False
     values = np.concatenate([s for _, s, _ in curves if s is not None and s.size == time.size])
-    positive = values[values > 0]
-    if positive.size and positive.max() > 20 * positive.min():  # cooling over decades
+    if spans_decades(values):  # a cooling gas: decades in T, and usually in time too
         ax.set_yscale("log")
+        if time.min() > 0 and spans_decades(time):
+            ax.set_xscale("log")
     ax.set_xlabel("time")
     ax.set_ylabel("temperature T")
     ax.set_title("Temperatures during the measurement")
@@ -165,7 +198,7 @@ def plot_velocity_pdfs(ax, f):
     obs = first_observable(f, "velocity_pdf")
     if obs is None:
         return False
-    drawn = False
+    lowest = math.inf
     for name, g in species_groups(obs, "x").items():
         axis = g["x"]
         edges, density = array(axis, "scaled_edges"), array(axis, "scaled_density")
@@ -178,13 +211,14 @@ def plot_velocity_pdfs(ax, f):
         label = name if kurt is None else f"{name} (kurtosis {with_error(*kurt)})"
         ax.errorbar(c[shown], density[shown], yerr=None if error is None else error[shown],
                     fmt="o", ms=2.5, capsize=1.5, lw=0.8, label=label)
-        drawn = True
-    if not drawn:
+        lowest = min(lowest, density[shown].min(initial=math.inf))
+    if not math.isfinite(lowest):
         return False
     c = np.linspace(*ax.get_xlim(), 400)
     ax.plot(c, np.exp(-0.5 * c**2) / math.sqrt(2 * math.pi), "k--", lw=1.0,
             label=r"Gaussian $e^{-c^2/2}/\sqrt{2\pi}$")
     ax.set_yscale("log")
+    ax.set_ylim(bottom=0.3 * lowest)  # error bars reaching zero end at the frame
     ax.set_xlabel(r"$c_x = v_x / \sqrt{T_s/m_s}$")
     ax.set_ylabel(r"$P(c_x)$")
     ax.set_title("Rescaled velocity distributions")
@@ -211,6 +245,8 @@ def plot_kinetic_energy(ax, f):
         ax.loglog(t, e[-1] * (t / t[-1]) ** -2.0, "k--", lw=1.0,
                   label=r"Haff's law $\propto t^{-2}$")
         ax.set_ylim(0.5 * e.min(), 2 * e.max())
+    elif not spans_decades(e, 10.0):
+        plain_log_labels(ax.yaxis)
     ax.set_xlabel("time")
     ax.set_ylabel("E / N")
     ax.set_title("Kinetic energy")
@@ -283,7 +319,7 @@ def make_figure(f, source_name):
     for ax, cell in zip(used, grid):  # close the gaps left by skipped panels
         ax.set_subplotspec(cell)
     fig.set_size_inches(6 * ncols, 4.5 * nrows)
-    fig.suptitle(f"{scene_title(f) or source_name}\n({source_name})", fontsize="medium")
+    fig.suptitle(figure_title(f, source_name), fontsize="medium")
     fig.tight_layout()
     return fig
 
