@@ -329,6 +329,9 @@ typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(double t_limit
         now_ = t_limit;
         return Stop::TimeLimit;
     }
+    // The flag is read on entry (runs made of many short advances, e.g. frequent thermostat
+    // kicks, must stop too) and every 1024 events.
+    if (interrupt && interrupt->load(std::memory_order_relaxed)) return Stop::Interrupted;
     std::uint32_t check = 0;
     while (true) {
         if (interrupt && (++check & 1023u) == 0 && interrupt->load(std::memory_order_relaxed)) {

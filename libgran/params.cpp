@@ -215,7 +215,9 @@ std::string describe(const ParamSpec& s) {
                 range_text(s);
             break;
         case ParamType::BoolList: t = "a list of true/false"; break;
-        case ParamType::StringList: t = "a list of strings"; break;
+        case ParamType::StringList:
+            t = s.length ? fmt::format("a list of {} strings", s.length) : "a list of strings";
+            break;
         case ParamType::Map: t = "a map"; break;
         case ParamType::List: t = "a list"; break;
     }
@@ -230,8 +232,13 @@ Params read_params(const YAML::Node& node, const Schema& schema, const Where& wh
     }
     YAML::Node out(YAML::NodeType::Map);
     if (node.IsMap()) {
+        std::vector<std::string> seen;
         for (auto it = node.begin(); it != node.end(); ++it) {
             const std::string key = it->first.as<std::string>();
+            if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
+                fail(where.child(key), it->first, fmt::format("key '{}' is given twice", key));
+            }
+            seen.push_back(key);
             const bool known = std::any_of(schema.begin(), schema.end(),
                                            [&](const ParamSpec& s) { return s.name == key; });
             const bool pass = std::find(passthrough.begin(), passthrough.end(), key) != passthrough.end();

@@ -103,8 +103,8 @@ std::string summary_path_for(const std::string& out) {
 }
 
 template <int D>
-RunReport run_dim(const Scene& sc, const RunOptions& opt) {
-    const Box<D> box = make_box<D>(sc);
+std::pair<std::vector<std::unique_ptr<Driver<D>>>, std::vector<std::unique_ptr<Observable<D>>>> make_plugins(
+    const Scene& sc) {
     SceneInfo info;
     info.dimension = D;
     info.seed = sc.seed;
@@ -112,18 +112,25 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
     info.box_length = sc.box_length;
     info.periodic = sc.periodic;
     info.initial_temperature = sc.temperature;
-
     std::vector<std::unique_ptr<Driver<D>>> drivers;
     for (std::size_t k = 0; k < sc.drivers.size(); ++k) {
         info.index = k;
-        drivers.push_back(Registry<Driver>::instance().find(sc.drivers[k].type)->template make<D>(sc.drivers[k].params, info));
+        drivers.push_back(
+            Registry<Driver>::instance().find(sc.drivers[k].type)->template make<D>(sc.drivers[k].params, info));
     }
     std::vector<std::unique_ptr<Observable<D>>> observables;
     for (std::size_t k = 0; k < sc.observables.size(); ++k) {
         info.index = k;
-        observables.push_back(
-            Registry<Observable>::instance().find(sc.observables[k].type)->template make<D>(sc.observables[k].params, info));
+        observables.push_back(Registry<Observable>::instance().find(sc.observables[k].type)->template make<D>(
+            sc.observables[k].params, info));
     }
+    return {std::move(drivers), std::move(observables)};
+}
+
+template <int D>
+RunReport run_dim(const Scene& sc, const RunOptions& opt) {
+    const Box<D> box = make_box<D>(sc);
+    auto [drivers, observables] = make_plugins<D>(sc);
 
     const double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;
     EventDrivenEngine<D> engine(box, sc.species, initial_particles<D>(sc), sc.engine);
@@ -218,6 +225,8 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
     if (interrupted) spdlog::warn("interrupted: writing what was measured so far");
 
     // Write to a temporary file and rename: an existing result is never clobbered by a failed run.
+    const auto parent = std::filesystem::path(opt.output).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
     const std::string part = opt.output + ".part";
     RunReport rep;
     rep.completed = !interrupted && !stalled;
@@ -349,11 +358,13 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
 
 }  // namespace
 
-void check_placement(const Scene& scene) {
+void check_scene(const Scene& scene) {
     if (scene.dimension == 2) {
         (void)initial_particles<2>(scene);
+        (void)make_plugins<2>(scene);
     } else {
         (void)initial_particles<3>(scene);
+        (void)make_plugins<3>(scene);
     }
 }
 

@@ -24,9 +24,10 @@ struct RunReport {
     YAML::Node summary;
 };
 
-// Places the particles as the scene says (throws SceneError naming the box on failure). Used by
-// `gran check` to refuse impossible scenes before running.
-void check_placement(const Scene& scene);
+// Everything short of running: places the particles (throws SceneError naming the box on
+// failure) and builds every driver and observable (whose constructors check cross-references such
+// as species names). `gran check` uses it to refuse impossible scenes before running.
+void check_scene(const Scene& scene);
 
 RunReport run_scene(const Scene& scene, const RunOptions& options);
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -36,7 +37,7 @@ Schema top_schema() {
         list_of(ParamType::List, "drivers", "energy injection: list of {type: <driver>, ...} (`gran list drivers`)"),
         list_of(ParamType::List, "observables", "measurements: list of {type: <observable>, ...} (`gran list observables`)"),
         list_of(ParamType::Map, "engine", "engine and numerical settings (see section engine)"),
-        list_of(ParamType::Map, "run", "run schedule (see section run)"),
+        list_of(ParamType::Map, "run", "run schedule (see section run)", false),
         list_of(ParamType::Map, "output", "output settings (see section output)"),
     };
 }
@@ -213,7 +214,18 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     } catch (const YAML::ParserException& e) {
         throw SceneError(fmt::format("{}:{}:{}: YAML syntax error: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
     }
-    for (const auto& o : overrides) apply_override(root, o);
+    std::vector<std::pair<std::string, std::string>> paths;
+    for (const auto& o : overrides) {
+        apply_override(root, o);
+        // "species.1.mass=2" -> "species[1].mass"
+        std::string p;
+        for (const auto& k : split(o.substr(0, o.find('=')), '.')) {
+            const bool index = !k.empty() && std::all_of(k.begin(), k.end(), ::isdigit);
+            p += index ? "[" + k + "]" : (p.empty() ? k : "." + k);
+        }
+        paths.emplace_back(p, o);
+    }
+    OverrideScope scope(paths);
     return parse_scene(root, path);
 }
 
@@ -287,9 +299,9 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
         const double need = sc.periodic[a] ? 2 * dmax : dmax;
         if (sc.box_length[a] < need) {
             bp.fail(bp.has("lengths") ? "lengths" : "packing_fraction",
-                    fmt::format("box length {:.4g} along axis {} is below {:.4g} ({} the largest diameter{})",
-                                sc.box_length[a], a, need, sc.periodic[a] ? "twice" : "",
-                                sc.periodic[a] ? ", needed on a periodic axis" : ""));
+                    fmt::format("box length {:.4g} along axis {} is below {:.4g} ({})", sc.box_length[a], a, need,
+                                sc.periodic[a] ? "twice the largest diameter, needed on a periodic axis"
+                                               : "the largest diameter"));
         }
     }
     if (sc.packing_fraction > max_packing_fraction(d)) {

@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace gran {
 
@@ -25,6 +27,15 @@ public:
 
 // "file:line:col: path: message" (line and column 1-based; omitted when the node has no mark).
 std::string locate(const Where& where, const YAML::Node& node);
+
+// Command-line overrides in force while a scene is validated: an error at (or below) an overridden
+// key names the `--set` assignment instead of a file position. Paths in Where form ("species[1].mass").
+struct OverrideScope {
+    explicit OverrideScope(std::vector<std::pair<std::string, std::string>> path_and_assignment);
+    ~OverrideScope();
+    OverrideScope(const OverrideScope&) = delete;
+    OverrideScope& operator=(const OverrideScope&) = delete;
+};
 [[noreturn]] void fail(const Where& where, const YAML::Node& node, const std::string& message);
 
 }  // namespace gran

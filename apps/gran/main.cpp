@@ -114,14 +114,12 @@ int main(int argc, char** argv) {
     try {
         gran::Scene scene = gran::load_scene(scene_file, sets);
         if (check->parsed()) {
-            gran::check_placement(scene);
+            gran::check_scene(scene);
             std::cout << fmt::format("{}: ok ({}D, {} particles, packing fraction {:.4g})\n", scene_file,
                                      scene.dimension, scene.species.total_count(), scene.packing_fraction);
             return 0;
         }
         if (output.empty()) output = default_output(scene_file);
-        const auto parent = std::filesystem::path(output).parent_path();
-        if (!parent.empty()) std::filesystem::create_directories(parent);
         std::signal(SIGINT, on_signal);
         std::signal(SIGTERM, on_signal);
         gran::RunOptions opt;
