@@ -12,7 +12,7 @@ namespace gran {
 
 template <int D>
 class Driver {
-public:
+  public:
     virtual ~Driver() = default;
     // Time of the next global event of this driver (+inf: none).
     virtual double next_time() const { return kInf; }

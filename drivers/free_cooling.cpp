@@ -6,7 +6,7 @@ namespace {
 
 template <int D>
 class FreeCooling final : public Driver<D> {
-public:
+  public:
     FreeCooling(const Params&, const SceneInfo&) {}
 };
 

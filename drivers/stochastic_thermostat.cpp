@@ -24,7 +24,7 @@ namespace {
 
 template <int D>
 class StochasticThermostat final : public Driver<D> {
-public:
+  public:
     StochasticThermostat(const Params& p, const SceneInfo& info)
         : interval_(p.real("interval")),
           strength_(p.real("strength")),
@@ -71,7 +71,7 @@ public:
         summary["injected_energy"] = injected_;
     }
 
-private:
+  private:
     static double mass_of(const EventDrivenEngine<D>& engine, std::size_t i) {
         return engine.species_mass(engine.particles().species[i]);
     }
@@ -89,12 +89,14 @@ private:
 
 const bool registered = register_plugin<Driver, StochasticThermostat>(
     "stochastic_thermostat",
-    "homogeneous white-noise heating: Gaussian velocity kicks to every particle at a fixed interval",
+    "homogeneous white-noise heating: Gaussian velocity kicks to every particle at a fixed "
+    "interval",
     {real("interval", "0.01", "time",
           "time between kicks; keep it well below the mean free time (the run reports kicks per "
           "collision)",
           0, 1e308, true),
-     real("strength", "1", "velocity^2/time (equal_velocity_variance) or force^2*time (equal_force_variance)",
+     real("strength", "1",
+          "velocity^2/time (equal_velocity_variance) or force^2*time (equal_force_variance)",
           "noise strength: velocity-kick variance per component is strength*interval "
           "(divided by m_i^2 for equal_force_variance)",
           0, 1e308, true),

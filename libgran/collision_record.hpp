@@ -21,7 +21,7 @@ struct CollisionRecord {
 
 template <int D>
 class CollisionSink {
-public:
+  public:
     virtual ~CollisionSink() = default;
     virtual void on_collision(const CollisionRecord<D>& c) = 0;
 };

@@ -80,42 +80,7 @@ void EventDrivenEngine<D>::build_cells() {
     }
     for (int a = 0; a < D; ++a) cell_width_[a] = box_.length[a] / ncell_[a];
 
-    const std::int32_t ncells = static_cast<std::int32_t>(total);
-    head_.assign(ncells, -1);
-    // Neighbour table: offsets {-1, 0, 1} per axis, only {0} for single-cell axes.
-    std::array<std::vector<int>, D> offsets;
-    nbr_per_cell_ = 1;
-    for (int a = 0; a < D; ++a) {
-        offsets[a] = ncell_[a] == 1 ? std::vector<int>{0} : std::vector<int>{-1, 0, 1};
-        nbr_per_cell_ *= static_cast<int>(offsets[a].size());
-    }
-    neighbours_.assign(std::size_t(ncells) * nbr_per_cell_, -1);
-    for (std::int32_t c = 0; c < ncells; ++c) {
-        std::array<std::int32_t, D> cc;
-        std::int32_t rest = c;
-        for (int a = 0; a < D; ++a) {
-            cc[a] = rest % ncell_[a];
-            rest /= ncell_[a];
-        }
-        for (int k = 0; k < nbr_per_cell_; ++k) {
-            int code = k;
-            std::array<std::int32_t, D> nc;
-            bool inside = true;
-            for (int a = 0; a < D; ++a) {
-                const int m = static_cast<int>(offsets[a].size());
-                nc[a] = cc[a] + offsets[a][code % m];
-                code /= m;
-                if (nc[a] < 0 || nc[a] >= ncell_[a]) {
-                    if (box_.periodic[a]) {
-                        nc[a] = (nc[a] + ncell_[a]) % ncell_[a];
-                    } else {
-                        inside = false;
-                    }
-                }
-            }
-            neighbours_[std::size_t(c) * nbr_per_cell_ + k] = inside ? cell_id(nc) : -1;
-        }
-    }
+    head_.assign(std::size_t(total), -1);
     const std::size_t n = p_.size();
     cc_.assign(n, {});
     cell_of_.assign(n, -1);
@@ -197,11 +162,40 @@ void EventDrivenEngine<D>::predict(std::uint32_t i) {
     }
 
     // Collisions with particles in the neighbouring cells.
-    const std::int32_t* nb = &neighbours_[std::size_t(cell_of_[i]) * nbr_per_cell_];
+    // Neighbour cell ids computed from the cell coordinates (no per-cell table).
+    std::array<std::array<std::int32_t, 3>, D> ax;
+    std::array<int, D> axn;
+    std::int32_t stride = 1;
+    for (int a = 0; a < D; ++a) {
+        int m = 0;
+        if (ncell_[a] == 1) {
+            ax[a][m++] = 0;
+        } else {
+            for (int o = -1; o <= 1; ++o) {
+                std::int32_t c = cc_[i][a] + o;
+                if (c < 0 || c >= ncell_[a]) {
+                    if (!box_.periodic[a]) continue;
+                    c = c < 0 ? c + ncell_[a] : c - ncell_[a];
+                }
+                ax[a][m++] = c * stride;
+            }
+        }
+        axn[a] = m;
+        stride *= ncell_[a];
+    }
+    std::int32_t nbc[27];
+    int nnb = 0;
+    if constexpr (D == 2) {
+        for (int y = 0; y < axn[1]; ++y)
+            for (int x = 0; x < axn[0]; ++x) nbc[nnb++] = ax[1][y] + ax[0][x];
+    } else {
+        for (int z = 0; z < axn[2]; ++z)
+            for (int y = 0; y < axn[1]; ++y)
+                for (int x = 0; x < axn[0]; ++x) nbc[nnb++] = ax[2][z] + ax[1][y] + ax[0][x];
+    }
     const double* sig = &sigma_pair_[si * ns_];
-    for (int k = 0; k < nbr_per_cell_; ++k) {
-        const std::int32_t c = nb[k];
-        if (c < 0) continue;
+    for (int k = 0; k < nnb; ++k) {
+        const std::int32_t c = nbc[k];
         for (std::int32_t j = head_[c]; j >= 0; j = next_[j]) {
             if (std::uint32_t(j) == i) continue;
             const Vec<D> rj = p_.r[j] + p_.v[j] * (now_ - p_.t[j]);
@@ -260,8 +254,8 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
     double impulse;
     if (rough_) {
         impulse = rough_collision<D>(p_.v[i], p_.v[j], p_.w[i], p_.w[j], mass_[si], mass_[sj],
-                                     diameter_[si], diameter_[sj], inertia_[si], inertia_[sj], n, alpha,
-                                     beta);
+                                     diameter_[si], diameter_[sj], inertia_[si], inertia_[sj], n,
+                                     alpha, beta);
     } else {
         impulse = smooth_collision<D>(p_.v[i], p_.v[j], mass_[si], mass_[sj], n, alpha);
     }
@@ -322,9 +316,8 @@ void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
 }
 
 template <int D>
-typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(double t_limit,
-                                                                   std::uint64_t collision_limit,
-                                                                   const std::atomic<bool>* interrupt) {
+typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
+    double t_limit, std::uint64_t collision_limit, const std::atomic<bool>* interrupt) {
     if (p_.size() == 0) {
         now_ = t_limit;
         return Stop::TimeLimit;
@@ -360,8 +353,12 @@ typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(double t_limit
                 if (counters_.collisions >= collision_limit) return Stop::CollisionLimit;
                 break;
             }
-            case kCell: cross_cell(i, ev_partner_[i]); break;
-            case kWall: hit_wall(i, ev_partner_[i]); break;
+            case kCell:
+                cross_cell(i, ev_partner_[i]);
+                break;
+            case kWall:
+                hit_wall(i, ev_partner_[i]);
+                break;
             default:
                 move(i);
                 predict(i);

@@ -1,10 +1,11 @@
 #pragma once
-// Event-driven molecular dynamics of inelastic hard disks (D = 2) and spheres (D = 3), one templated
-// code path. Design (see docs/architecture.md):
+// Event-driven molecular dynamics of inelastic hard disks (D = 2) and spheres (D = 3), one
+// templated code path. Design (see docs/architecture.md):
 //  - structure-of-arrays particle state with per-particle clocks (lazy position updates);
 //  - cell list (cells at least one largest diameter wide) with cell-crossing events;
 //  - one pending event per particle, validated lazily with per-particle collision counters;
-//  - indexed binary heap keyed by particle (O(log N) per event), no allocation per event;
+//  - indexed 4-ary heap keyed by particle (O(log N) per event), no allocation per event;
+//  - neighbour cells computed from cell coordinates (a per-cell table falls out of cache at 1e5);
 //  - round-off-proof detection: an approaching pair that already overlaps collides now, a receding
 //    one is ignored, and no event is ever scheduled before the current time;
 //  - the TC model against inelastic collapse (Luding & McNamara, Granular Matter 1, 113 (1998)):
@@ -34,10 +35,11 @@ struct EngineCounters {
     std::uint64_t collisions = 0;
     std::uint64_t cell_crossings = 0;
     std::uint64_t wall_hits = 0;
-    std::uint64_t stale_events = 0;        // invalidated predictions popped and recomputed
-    std::uint64_t tc_collisions = 0;       // collisions made elastic by the TC guard
-    std::uint64_t overlap_collisions = 0;  // approaching pairs found overlapping (round-off) and collided at once
-    std::uint64_t full_reschedules = 0;    // all events recomputed (e.g. after thermostat kicks)
+    std::uint64_t stale_events = 0;   // invalidated predictions popped and recomputed
+    std::uint64_t tc_collisions = 0;  // collisions made elastic by the TC guard
+    std::uint64_t overlap_collisions =
+        0;  // approaching pairs found overlapping (round-off) and collided at once
+    std::uint64_t full_reschedules = 0;  // all events recomputed (e.g. after thermostat kicks)
 };
 
 // Collision time of two spheres at separation dr, relative velocity dv, contact distance sigma.
@@ -56,7 +58,7 @@ inline double pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sig
 
 template <int D>
 class EventDrivenEngine {
-public:
+  public:
     enum class Stop { TimeLimit, CollisionLimit, Interrupted, NoEvents };
 
     EventDrivenEngine(const Box<D>& box, const SpeciesTable& table, Particles<D> particles,
@@ -89,7 +91,7 @@ public:
 
     void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
 
-private:
+  private:
     enum Kind : std::uint8_t { kNone, kCollision, kCell, kWall };
 
     void move(std::uint32_t i) {
@@ -131,8 +133,6 @@ private:
     Vec<D> cell_width_;
     std::vector<std::array<std::int32_t, D>> cc_;
     std::vector<std::int32_t> cell_of_, next_, prev_, head_;
-    std::vector<std::int32_t> neighbours_;  // per cell, nbr_per_cell_ entries (-1 = none)
-    int nbr_per_cell_ = 0;
 
     std::vector<std::uint64_t> pair_collisions_;
     CollisionSink<D>* sink_ = nullptr;

@@ -42,7 +42,8 @@ ParamSpec boolean(std::string name, std::string def, std::string doc) {
     return s;
 }
 
-ParamSpec choice(std::string name, std::string def, std::vector<std::string> choices, std::string doc) {
+ParamSpec choice(std::string name, std::string def, std::vector<std::string> choices,
+                 std::string doc) {
     ParamSpec s;
     s.name = std::move(name);
     s.type = ParamType::Choice;
@@ -77,8 +78,8 @@ std::string range_text(const ParamSpec& s) {
     const bool has_min = s.min > -1e300;
     const bool has_max = s.max < 1e300;
     if (has_min && has_max) {
-        return fmt::format(" in {}{}, {}{}", s.min_open ? "(" : "[", fmt_bound(s.min), fmt_bound(s.max),
-                           s.max_open ? ")" : "]");
+        return fmt::format(" in {}{}, {}{}", s.min_open ? "(" : "[", fmt_bound(s.min),
+                           fmt_bound(s.max), s.max_open ? ")" : "]");
     }
     if (has_min) return fmt::format(" {} {}", s.min_open ? ">" : ">=", fmt_bound(s.min));
     if (has_max) return fmt::format(" {} {}", s.max_open ? "<" : "<=", fmt_bound(s.max));
@@ -174,7 +175,8 @@ YAML::Node check_value(const ParamSpec& s, const YAML::Node& n, const Where& w) 
                     if (!b) fail(we, e, fmt::format("expected {}, got {}", expected, shown(e)));
                     list.push_back(*b);
                 } else {
-                    if (!e.IsScalar()) fail(we, e, fmt::format("expected {}, got {}", expected, shown(e)));
+                    if (!e.IsScalar())
+                        fail(we, e, fmt::format("expected {}, got {}", expected, shown(e)));
                     list.push_back(e.Scalar());
                 }
             }
@@ -201,25 +203,40 @@ YAML::Node child(const YAML::Node& map, const std::string& key) {
 std::string describe(const ParamSpec& s) {
     std::string t;
     switch (s.type) {
-        case ParamType::Real: t = "a real number" + range_text(s); break;
-        case ParamType::Integer: t = "a whole number" + range_text(s); break;
-        case ParamType::Boolean: t = "true or false"; break;
-        case ParamType::String: t = "a string"; break;
+        case ParamType::Real:
+            t = "a real number" + range_text(s);
+            break;
+        case ParamType::Integer:
+            t = "a whole number" + range_text(s);
+            break;
+        case ParamType::Boolean:
+            t = "true or false";
+            break;
+        case ParamType::String:
+            t = "a string";
+            break;
         case ParamType::Choice: {
             t = "one of";
             for (std::size_t k = 0; k < s.choices.size(); ++k) t += (k ? ", " : " ") + s.choices[k];
             break;
         }
         case ParamType::RealList:
-            t = (s.length ? fmt::format("a list of {} real numbers", s.length) : "a list of real numbers") +
+            t = (s.length ? fmt::format("a list of {} real numbers", s.length)
+                          : "a list of real numbers") +
                 range_text(s);
             break;
-        case ParamType::BoolList: t = "a list of true/false"; break;
+        case ParamType::BoolList:
+            t = "a list of true/false";
+            break;
         case ParamType::StringList:
             t = s.length ? fmt::format("a list of {} strings", s.length) : "a list of strings";
             break;
-        case ParamType::Map: t = "a map"; break;
-        case ParamType::List: t = "a list"; break;
+        case ParamType::Map:
+            t = "a map";
+            break;
+        case ParamType::List:
+            t = "a list";
+            break;
     }
     if (!s.unit.empty()) t += " [" + s.unit + "]";
     return t;
@@ -241,7 +258,8 @@ Params read_params(const YAML::Node& node, const Schema& schema, const Where& wh
             seen.push_back(key);
             const bool known = std::any_of(schema.begin(), schema.end(),
                                            [&](const ParamSpec& s) { return s.name == key; });
-            const bool pass = std::find(passthrough.begin(), passthrough.end(), key) != passthrough.end();
+            const bool pass =
+                std::find(passthrough.begin(), passthrough.end(), key) != passthrough.end();
             if (!known && !pass) {
                 std::string allowed;
                 for (const auto& s : schema) allowed += (allowed.empty() ? "" : ", ") + s.name;
@@ -258,7 +276,8 @@ Params read_params(const YAML::Node& node, const Schema& schema, const Where& wh
         } else if (!s.default_value.empty()) {
             out[s.name] = check_value(s, YAML::Load(s.default_value), where.child(s.name));
         } else if (!s.optional) {
-            fail(where, node, fmt::format("missing required key '{}' ({}: {})", s.name, describe(s), s.doc));
+            fail(where, node,
+                 fmt::format("missing required key '{}' ({}: {})", s.name, describe(s), s.doc));
         }
     }
     return Params(out, node, where);
@@ -274,9 +293,13 @@ std::int64_t Params::integer(const std::string& key) const {
     return static_cast<std::int64_t>(std::llround(std::stod(values_[key].Scalar())));
 }
 
-bool Params::boolean(const std::string& key) const { return values_[key].as<bool>(); }
+bool Params::boolean(const std::string& key) const {
+    return values_[key].as<bool>();
+}
 
-std::string Params::str(const std::string& key) const { return values_[key].as<std::string>(); }
+std::string Params::str(const std::string& key) const {
+    return values_[key].as<std::string>();
+}
 
 std::vector<double> Params::reals(const std::string& key) const {
     std::vector<double> v;

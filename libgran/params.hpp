@@ -1,7 +1,7 @@
 #pragma once
-// Parameter declarations: every plugin and scene section declares its keys once (name, type, default,
-// unit, allowed range, one-line doc). The same table drives validation, defaults, the resolved scene
-// written to results, and `gran list`.
+// Parameter declarations: every plugin and scene section declares its keys once (name, type,
+// default, unit, allowed range, one-line doc). The same table drives validation, defaults, the
+// resolved scene written to results, and `gran list`.
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
@@ -13,7 +13,18 @@
 
 namespace gran {
 
-enum class ParamType { Real, Integer, Boolean, String, Choice, RealList, BoolList, StringList, Map, List };
+enum class ParamType {
+    Real,
+    Integer,
+    Boolean,
+    String,
+    Choice,
+    RealList,
+    BoolList,
+    StringList,
+    Map,
+    List
+};
 
 struct ParamSpec {
     std::string name;
@@ -27,28 +38,34 @@ struct ParamSpec {
     bool max_open = false;
     std::vector<std::string> choices;  // for Choice
     bool optional = false;             // may be absent without a default
-    std::size_t length = 0;            // required list length (0 = any; for lists of dimension length the caller checks)
+    std::size_t length =
+        0;  // required list length (0 = any; for lists of dimension length the caller checks)
 };
 
 using Schema = std::vector<ParamSpec>;
 
 // Builders that keep declarations one line each.
-ParamSpec real(std::string name, std::string def, std::string unit, std::string doc, double min = -1e308,
-               double max = 1e308, bool min_open = false, bool max_open = false);
-ParamSpec integer(std::string name, std::string def, std::string doc, double min = -1e18, double max = 1e18);
+ParamSpec real(std::string name, std::string def, std::string unit, std::string doc,
+               double min = -1e308, double max = 1e308, bool min_open = false,
+               bool max_open = false);
+ParamSpec integer(std::string name, std::string def, std::string doc, double min = -1e18,
+                  double max = 1e18);
 ParamSpec boolean(std::string name, std::string def, std::string doc);
-ParamSpec choice(std::string name, std::string def, std::vector<std::string> choices, std::string doc);
+ParamSpec choice(std::string name, std::string def, std::vector<std::string> choices,
+                 std::string doc);
 ParamSpec text(std::string name, std::string def, std::string doc);
 ParamSpec optional(ParamSpec spec);
 
 // A validated section: every declared key has a value (given or default) unless declared optional.
 class Params {
-public:
+  public:
     Params() = default;
     Params(YAML::Node values, YAML::Node source, Where where)
         : values_(std::move(values)), source_(std::move(source)), where_(std::move(where)) {}
 
-    bool has(const std::string& key) const { return values_[key].IsDefined() && !values_[key].IsNull(); }
+    bool has(const std::string& key) const {
+        return values_[key].IsDefined() && !values_[key].IsNull();
+    }
     double real(const std::string& key) const;
     std::int64_t integer(const std::string& key) const;
     bool boolean(const std::string& key) const;
@@ -64,7 +81,7 @@ public:
     [[noreturn]] void fail(const std::string& key, const std::string& message) const;
     const Where& where() const { return where_; }
 
-private:
+  private:
     YAML::Node values_;
     YAML::Node source_;
     Where where_;
@@ -74,9 +91,10 @@ private:
 // operator[] returns an invalid node for absent keys, on which most calls throw.)
 YAML::Node child(const YAML::Node& map, const std::string& key);
 
-// Validates `node` (a map, or null for an empty section) against `schema`. Unknown keys, wrong types,
-// out-of-range values and missing required keys are SceneErrors naming file:line:column and key.
-// Keys in `passthrough` are accepted without checks (e.g. the "type" key that selected the plugin).
+// Validates `node` (a map, or null for an empty section) against `schema`. Unknown keys, wrong
+// types, out-of-range values and missing required keys are SceneErrors naming file:line:column and
+// key. Keys in `passthrough` are accepted without checks (e.g. the "type" key that selected the
+// plugin).
 Params read_params(const YAML::Node& node, const Schema& schema, const Where& where,
                    const std::vector<std::string>& passthrough = {});
 

@@ -27,7 +27,8 @@ namespace {
 template <int D>
 std::vector<std::uint32_t> species_sequence(const SpeciesTable& table) {
     std::vector<std::uint32_t> seq;
-    for (std::uint32_t s = 0; s < table.size(); ++s) seq.insert(seq.end(), table.species[s].count, s);
+    for (std::uint32_t s = 0; s < table.size(); ++s)
+        seq.insert(seq.end(), table.species[s].count, s);
     return seq;
 }
 
@@ -76,7 +77,8 @@ Particles<D> place_random(const Box<D>& box, const SpeciesTable& table, Rng& rng
                 r[a] = lo + (hi - lo) * uniform01(rng);
             }
             std::array<std::int64_t, D> c;
-            for (int a = 0; a < D; ++a) c[a] = std::min<std::int64_t>(nc[a] - 1, std::int64_t(r[a] / w[a]));
+            for (int a = 0; a < D; ++a)
+                c[a] = std::min<std::int64_t>(nc[a] - 1, std::int64_t(r[a] / w[a]));
             bool ok = true;
             // Scan the 3^D neighbourhood (wrapping periodic axes).
             for (int code = 0; code < (D == 2 ? 9 : 27) && ok; ++code) {
@@ -114,7 +116,8 @@ Particles<D> place_random(const Box<D>& box, const SpeciesTable& table, Rng& rng
         }
         if (!placed) {
             throw PlacementError(fmt::format(
-                "random placement failed: particle {} of {} (species '{}') found no free spot after {} "
+                "random placement failed: particle {} of {} (species '{}') found no free spot "
+                "after {} "
                 "attempts at packing fraction {:.4g}; use initial.placement: lattice or a lower "
                 "packing fraction",
                 idx + 1, order.size(), table.species[s].name, attempts, phi));
@@ -142,10 +145,11 @@ Particles<D> place_lattice(const Box<D>& box, const SpeciesTable& table, Rng& rn
     }
     for (int a = 0; a < D; ++a) {
         if (box.length[a] / double(m[a]) < dmax * (1 + 1e-12)) {
-            throw PlacementError(fmt::format(
-                "lattice placement failed: {} sites along axis {} are {:.4g} apart, less than the largest "
-                "diameter {:.4g}; enlarge the box or lower the packing fraction",
-                m[a], a, box.length[a] / double(m[a]), dmax));
+            throw PlacementError(
+                fmt::format("lattice placement failed: {} sites along axis {} are {:.4g} apart, "
+                            "less than the largest "
+                            "diameter {:.4g}; enlarge the box or lower the packing fraction",
+                            m[a], a, box.length[a] / double(m[a]), dmax));
         }
     }
     std::vector<std::uint32_t> seq = species_sequence<D>(table);

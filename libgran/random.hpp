@@ -22,7 +22,11 @@ inline Rng make_rng(std::uint64_t seed, Stream stream) {
     return Rng(z);
 }
 
-inline double uniform01(Rng& rng) { return boost::random::uniform_01<double>()(rng); }
-inline double gaussian(Rng& rng) { return boost::random::normal_distribution<double>()(rng); }
+inline double uniform01(Rng& rng) {
+    return boost::random::uniform_01<double>()(rng);
+}
+inline double gaussian(Rng& rng) {
+    return boost::random::normal_distribution<double>()(rng);
+}
 
 }  // namespace gran

@@ -35,7 +35,7 @@ struct Plugin {
 
 template <template <int> class Base>
 class Registry {
-public:
+  public:
     static Registry& instance() {
         static Registry r;
         return r;
@@ -59,7 +59,7 @@ public:
         return s;
     }
 
-private:
+  private:
     std::map<std::string, Plugin<Base>> plugins_;
 };
 

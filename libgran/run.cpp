@@ -49,7 +49,7 @@ Particles<D> initial_particles(const Scene& sc) {
 // Forwards collisions to several subscribers.
 template <int D>
 class CollisionFanout final : public CollisionSink<D> {
-public:
+  public:
     std::vector<CollisionSink<D>*> sinks;
     void on_collision(const CollisionRecord<D>& c) override {
         for (auto* s : sinks) s->on_collision(c);
@@ -57,7 +57,7 @@ public:
 };
 
 class Progress {
-public:
+  public:
     Progress(const RunOptions& o, double log_interval) : opt_(o), log_interval_(log_interval) {
         start_ = Clock::now();
         last_log_ = start_;
@@ -67,13 +67,16 @@ public:
         const auto now = Clock::now();
         const double since = std::chrono::duration<double>(now - last_draw_).count();
         if (!force && opt_.terminal && since < 0.2) return;
-        if (!force && !opt_.terminal && std::chrono::duration<double>(now - last_log_).count() < log_interval_) return;
+        if (!force && !opt_.terminal &&
+            std::chrono::duration<double>(now - last_log_).count() < log_interval_)
+            return;
         last_draw_ = now;
         const double elapsed = std::chrono::duration<double>(now - start_).count();
         const double rate = elapsed > 0 ? double(events) / elapsed : 0;
         const double eta = fraction > 1e-9 ? elapsed * (1 - fraction) / fraction : 0;
-        const std::string line = fmt::format("{:<13} {:5.1f}%  elapsed {:.0f}s  ETA {:.0f}s  {:.3g} events/s", phase,
-                                             100 * fraction, elapsed, eta, rate);
+        const std::string line =
+            fmt::format("{:<13} {:5.1f}%  elapsed {:.0f}s  ETA {:.0f}s  {:.3g} events/s", phase,
+                        100 * fraction, elapsed, eta, rate);
         if (opt_.terminal) {
             std::fprintf(stderr, "\r%s   ", line.c_str());
             std::fflush(stderr);
@@ -88,7 +91,7 @@ public:
     }
     double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
-private:
+  private:
     using Clock = std::chrono::steady_clock;
     const RunOptions& opt_;
     double log_interval_;
@@ -103,8 +106,8 @@ std::string summary_path_for(const std::string& out) {
 }
 
 template <int D>
-std::pair<std::vector<std::unique_ptr<Driver<D>>>, std::vector<std::unique_ptr<Observable<D>>>> make_plugins(
-    const Scene& sc) {
+std::pair<std::vector<std::unique_ptr<Driver<D>>>, std::vector<std::unique_ptr<Observable<D>>>>
+make_plugins(const Scene& sc) {
     SceneInfo info;
     info.dimension = D;
     info.seed = sc.seed;
@@ -115,14 +118,16 @@ std::pair<std::vector<std::unique_ptr<Driver<D>>>, std::vector<std::unique_ptr<O
     std::vector<std::unique_ptr<Driver<D>>> drivers;
     for (std::size_t k = 0; k < sc.drivers.size(); ++k) {
         info.index = k;
-        drivers.push_back(
-            Registry<Driver>::instance().find(sc.drivers[k].type)->template make<D>(sc.drivers[k].params, info));
+        drivers.push_back(Registry<Driver>::instance()
+                              .find(sc.drivers[k].type)
+                              ->template make<D>(sc.drivers[k].params, info));
     }
     std::vector<std::unique_ptr<Observable<D>>> observables;
     for (std::size_t k = 0; k < sc.observables.size(); ++k) {
         info.index = k;
-        observables.push_back(Registry<Observable>::instance().find(sc.observables[k].type)->template make<D>(
-            sc.observables[k].params, info));
+        observables.push_back(Registry<Observable>::instance()
+                                  .find(sc.observables[k].type)
+                                  ->template make<D>(sc.observables[k].params, info));
     }
     return {std::move(drivers), std::move(observables)};
 }
@@ -144,13 +149,17 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
     const std::size_t n = engine.particles().size();
     const auto& s = sc.schedule;
     const bool by_time = s.unit == ScheduleUnit::Time;
-    auto coll_of = [&](double cpp) { return static_cast<std::uint64_t>(std::llround(cpp * double(n) / 2.0)); };
-    const std::size_t expected_samples = static_cast<std::size_t>(std::floor(s.measurement / s.sample_interval + 1e-9));
+    auto coll_of = [&](double cpp) {
+        return static_cast<std::uint64_t>(std::llround(cpp * double(n) / 2.0));
+    };
+    const std::size_t expected_samples =
+        static_cast<std::size_t>(std::floor(s.measurement / s.sample_interval + 1e-9));
 
     // Trajectory frames (equally spaced over the measurement samples).
     std::vector<double> frame_time;
     std::vector<double> frame_pos, frame_vel;
-    std::size_t frame_every = sc.frames > 0 ? std::max<std::size_t>(1, expected_samples / sc.frames) : 0;
+    std::size_t frame_every =
+        sc.frames > 0 ? std::max<std::size_t>(1, expected_samples / sc.frames) : 0;
 
     Progress progress(opt, sc.progress_interval);
     bool interrupted = false;
@@ -169,10 +178,12 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
             t_measure_start = t0;
             coll_measure_start = c0;
         }
-        const std::size_t nsamples = static_cast<std::size_t>(std::floor(length / s.sample_interval + 1e-9));
+        const std::size_t nsamples =
+            static_cast<std::size_t>(std::floor(length / s.sample_interval + 1e-9));
         for (std::size_t k = 1; k <= nsamples && !interrupted && !stalled; ++k) {
             const double t_target = by_time ? t0 + double(k) * s.sample_interval : kInf;
-            const std::uint64_t c_target = by_time ? UINT64_MAX : c0 + coll_of(double(k) * s.sample_interval);
+            const std::uint64_t c_target =
+                by_time ? UINT64_MAX : c0 + coll_of(double(k) * s.sample_interval);
             // Advance to the sample, stopping for driver events on the way.
             while (true) {
                 double t_driver = kInf;
@@ -203,7 +214,8 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
             for (auto& o : observables) o->sample(ctx);
             if (measuring) {
                 ++samples_taken;
-                if (frame_every && samples_taken % frame_every == 0 && frame_time.size() < sc.frames) {
+                if (frame_every && samples_taken % frame_every == 0 &&
+                    frame_time.size() < sc.frames) {
                     engine.synchronize();
                     frame_time.push_back(engine.now());
                     for (std::size_t i = 0; i < n; ++i) {
@@ -214,9 +226,10 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
                     }
                 }
             }
-            const double done = (measuring ? s.equilibration : 0.0) + length * double(k) / double(nsamples);
-            progress.update(measuring ? "measurement" : "equilibration", done / (s.equilibration + s.measurement),
-                            engine.counters().events);
+            const double done =
+                (measuring ? s.equilibration : 0.0) + length * double(k) / double(nsamples);
+            progress.update(measuring ? "measurement" : "equilibration",
+                            done / (s.equilibration + s.measurement), engine.counters().events);
         }
     }
     progress.finish();
@@ -302,7 +315,8 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
             h5::Group bx = pg.group("box");
             bx.attr("dimension", static_cast<std::int64_t>(D));
             std::vector<std::string> boundary;
-            for (int a = 0; a < D; ++a) boundary.push_back(sc.periodic[std::size_t(a)] ? "periodic" : "none");
+            for (int a = 0; a < D; ++a)
+                boundary.push_back(sc.periodic[std::size_t(a)] ? "periodic" : "none");
             bx.attr("boundary", boundary);
             bx.write("edges", sc.box_length);
             const std::vector<std::size_t> shape{frame_time.size(), n, std::size_t(D)};
@@ -322,7 +336,8 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
         summary["scene"] = sc.file;
         if (!sc.title.empty()) summary["title"] = sc.title;
         summary["result"] = opt.output;
-        summary["status"] = interrupted ? "interrupted" : (stalled ? "stopped: no more events" : "completed");
+        summary["status"] =
+            interrupted ? "interrupted" : (stalled ? "stopped: no more events" : "completed");
         summary["dimension"] = D;
         summary["particles"] = n;
         summary["packing_fraction"] = sc.packing_fraction;
@@ -340,7 +355,8 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
         ps["overlap_collisions"] = c.overlap_collisions;
         ps["full_reschedules"] = c.full_reschedules;
         if (c.full_reschedules > 0 && c.collisions > 0) {
-            ps["reschedules_per_collision_per_particle"] = double(c.full_reschedules) * double(n) / (2.0 * double(c.collisions));
+            ps["reschedules_per_collision_per_particle"] =
+                double(c.full_reschedules) * double(n) / (2.0 * double(c.collisions));
         }
         summary["performance"] = ps;
         file.close();

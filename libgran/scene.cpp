@@ -28,14 +28,18 @@ Schema top_schema() {
     return {
         optional(text("title", "", "free text describing the scene")),
         integer("dimension", "", "2 (disks) or 3 (spheres)", 2, 3),
-        integer("seed", "1", "random seed: the same scene and seed give identical results", 0, 9.2e18),
-        optional(integer("particles", "", "total number of particles (when species give number_fraction)", 1, 1e9)),
+        integer("seed", "1", "random seed: the same scene and seed give identical results", 0,
+                9.2e18),
+        optional(integer("particles", "",
+                         "total number of particles (when species give number_fraction)", 1, 1e9)),
         list_of(ParamType::Map, "box", "box geometry (see section box)", false),
         list_of(ParamType::List, "species", "list of species (see section species)", false),
         list_of(ParamType::Map, "interactions", "pair laws (see section interactions)"),
         list_of(ParamType::Map, "initial", "initial configuration (see section initial)"),
-        list_of(ParamType::List, "drivers", "energy injection: list of {type: <driver>, ...} (`gran list drivers`)"),
-        list_of(ParamType::List, "observables", "measurements: list of {type: <observable>, ...} (`gran list observables`)"),
+        list_of(ParamType::List, "drivers",
+                "energy injection: list of {type: <driver>, ...} (`gran list drivers`)"),
+        list_of(ParamType::List, "observables",
+                "measurements: list of {type: <observable>, ...} (`gran list observables`)"),
         list_of(ParamType::Map, "engine", "engine and numerical settings (see section engine)"),
         list_of(ParamType::Map, "run", "run schedule (see section run)", false),
         list_of(ParamType::Map, "output", "output settings (see section output)"),
@@ -43,50 +47,58 @@ Schema top_schema() {
 }
 
 Schema box_schema() {
-    ParamSpec lengths = real("lengths", "", "length", "box edge lengths, one per axis", 0, 1e308, true);
+    ParamSpec lengths =
+        real("lengths", "", "length", "box edge lengths, one per axis", 0, 1e308, true);
     lengths.type = ParamType::RealList;
     lengths.optional = true;
     lengths.default_value = "";
-    ParamSpec aspect = real("aspect", "", "", "edge-length ratios used with packing_fraction (default all 1)",
-                            0, 1e308, true);
+    ParamSpec aspect =
+        real("aspect", "", "", "edge-length ratios used with packing_fraction (default all 1)", 0,
+             1e308, true);
     aspect.type = ParamType::RealList;
     aspect.optional = true;
-    ParamSpec periodic = boolean("periodic", "", "per axis: periodic (true) or bounded by static elastic walls");
+    ParamSpec periodic =
+        boolean("periodic", "", "per axis: periodic (true) or bounded by static elastic walls");
     periodic.type = ParamType::BoolList;
     periodic.default_value = "";
     periodic.optional = true;
     return {lengths,
-            optional(real("packing_fraction", "", "", "packing fraction: the box is sized to reach it", 0, 1,
-                          true, true)),
+            optional(real("packing_fraction", "", "",
+                          "packing fraction: the box is sized to reach it", 0, 1, true, true)),
             aspect, periodic};
 }
 
 Schema initial_schema() {
     return {choice("placement", "random", {"random", "lattice"},
                    "random non-overlapping insertion or a square/cubic lattice"),
-            real("temperature", "1", "energy", "initial temperature of every species (Maxwellian)", 0, 1e308, true)};
+            real("temperature", "1", "energy", "initial temperature of every species (Maxwellian)",
+                 0, 1e308, true)};
 }
 
 Schema engine_schema() {
     return {choice("type", "event_driven", {"event_driven"}, "simulation engine"),
             choice("collapse_guard", "tc", {"tc", "none"},
-                   "inelastic-collapse guard: TC model (collisions within tc of a previous one are elastic)"),
+                   "inelastic-collapse guard: TC model (collisions within tc of a previous one are "
+                   "elastic)"),
             real("tc", "1e-6", "time", "TC-model time window", 0, 1e308)};
 }
 
 Schema run_schema() {
     return {choice("unit", "collisions_per_particle", {"collisions_per_particle", "time"},
                    "unit of the schedule lengths (collisions per particle = 2 N_coll / N)"),
-            real("equilibration", "0", "unit", "length of the equilibration phase (not measured)", 0, 1e308),
+            real("equilibration", "0", "unit", "length of the equilibration phase (not measured)",
+                 0, 1e308),
             real("measurement", "", "unit", "length of the measurement phase", 0, 1e308, true),
-            real("sample_interval", "1", "unit", "interval between samples of the observables", 0, 1e308, true),
-            real("progress_interval", "10", "s", "seconds between progress log lines when not on a terminal", 0,
-                 1e308, true)};
+            real("sample_interval", "1", "unit", "interval between samples of the observables", 0,
+                 1e308, true),
+            real("progress_interval", "10", "s",
+                 "seconds between progress log lines when not on a terminal", 0, 1e308, true)};
 }
 
 Schema output_schema() {
-    return {integer("frames", "0", "trajectory frames written under /particles (equally spaced in the measurement)",
-                    0, 1e6)};
+    return {integer(
+        "frames", "0",
+        "trajectory frames written under /particles (equally spaced in the measurement)", 0, 1e6)};
 }
 
 std::vector<PluginEntry> read_plugins(const YAML::Node& list, const Where& w, bool observable,
@@ -99,7 +111,8 @@ std::vector<PluginEntry> read_plugins(const YAML::Node& list, const Where& w, bo
         const YAML::Node e = list[k];
         if (!e.IsMap()) fail(wk, e, "expected a map with a `type` key");
         if (!child(e, "type").IsDefined()) fail(wk, e, "missing required key 'type'");
-        if (!child(e, "type").IsScalar()) fail(wk.child("type"), child(e, "type"), "expected the name of a plugin");
+        if (!child(e, "type").IsScalar())
+            fail(wk.child("type"), child(e, "type"), "expected the name of a plugin");
         const std::string type = child(e, "type").as<std::string>();
         const Schema* schema = nullptr;
         std::string known;
@@ -112,7 +125,8 @@ std::vector<PluginEntry> read_plugins(const YAML::Node& list, const Where& w, bo
         }
         if (!schema) {
             fail(wk.child("type"), child(e, "type"),
-                 fmt::format("unknown {} '{}'; known: {}", observable ? "observable" : "driver", type, known));
+                 fmt::format("unknown {} '{}'; known: {}", observable ? "observable" : "driver",
+                             type, known));
         }
         Schema s = *schema;
         s.push_back(optional(text("name", "", "name of the result group (default: the type)")));
@@ -120,7 +134,8 @@ std::vector<PluginEntry> read_plugins(const YAML::Node& list, const Where& w, bo
         PluginEntry entry{type, p.has("name") ? p.str("name") : type, p};
         for (const auto& other : out) {
             if (other.name == entry.name) {
-                p.fail("type", fmt::format("two entries named '{}': give one a distinct `name`", entry.name));
+                p.fail("type", fmt::format("two entries named '{}': give one a distinct `name`",
+                                           entry.name));
             }
         }
         YAML::Node r = p.resolved();
@@ -152,7 +167,8 @@ std::vector<SectionDoc> scene_sections() {
     return {{"scene", "top-level keys of a scene file", top_schema()},
             {"box", "box geometry: give lengths, or packing_fraction (and aspect)", box_schema()},
             {"species", "one entry per species", species_schema()},
-            {"interactions", "default pair law and its parameters, plus `pairs` overrides (see `gran list laws`)",
+            {"interactions",
+             "default pair law and its parameters, plus `pairs` overrides (see `gran list laws`)",
              {text("law", "constant_restitution", "default pair law")}},
             {"interactions.pairs[]", "per-pair override: the pair and the law parameters to change",
              pair_override_schema()},
@@ -165,7 +181,8 @@ std::vector<SectionDoc> scene_sections() {
 void apply_override(YAML::Node& root, const std::string& assignment) {
     const auto eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0) {
-        throw SceneError(fmt::format("--set '{}': expected key=value, e.g. --set run.measurement=100", assignment));
+        throw SceneError(fmt::format(
+            "--set '{}': expected key=value, e.g. --set run.measurement=100", assignment));
     }
     const auto keys = split(assignment.substr(0, eq), '.');
     YAML::Node value;
@@ -183,12 +200,14 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
         if (index) {
             const std::size_t idx = std::stoul(key);
             if (!cur.IsSequence() || idx >= cur.size()) {
-                throw SceneError(fmt::format("--set '{}': '{}' is not an index of an existing list", assignment, key));
+                throw SceneError(fmt::format("--set '{}': '{}' is not an index of an existing list",
+                                             assignment, key));
             }
             chain.push_back(cur[idx]);
         } else {
             if (cur.IsSequence()) {
-                throw SceneError(fmt::format("--set '{}': '{}' is a list; use a numeric index", assignment, key));
+                throw SceneError(fmt::format("--set '{}': '{}' is a list; use a numeric index",
+                                             assignment, key));
             }
             if (!cur[key]) cur[key] = YAML::Node(YAML::NodeType::Map);
             chain.push_back(cur[key]);
@@ -198,7 +217,8 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
     const std::string& key = keys.back();
     if (!key.empty() && std::all_of(key.begin(), key.end(), ::isdigit) && last.IsSequence()) {
         const std::size_t idx = std::stoul(key);
-        if (idx >= last.size()) throw SceneError(fmt::format("--set '{}': index {} out of range", assignment, idx));
+        if (idx >= last.size())
+            throw SceneError(fmt::format("--set '{}': index {} out of range", assignment, idx));
         last[idx] = value;
     } else {
         last[key] = value;
@@ -212,7 +232,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     try {
         root = YAML::LoadFile(path);
     } catch (const YAML::ParserException& e) {
-        throw SceneError(fmt::format("{}:{}:{}: YAML syntax error: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
+        throw SceneError(fmt::format("{}:{}:{}: YAML syntax error: {}", path, e.mark.line + 1,
+                                     e.mark.column + 1, e.msg));
     }
     std::vector<std::pair<std::string, std::string>> paths;
     for (const auto& o : overrides) {
@@ -231,7 +252,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 
 Scene parse_scene(const YAML::Node& root, const std::string& file) {
     const Where top{file, ""};
-    if (!root.IsMap()) fail(top, root, "expected a scene: a map with keys dimension, box, species, run, ...");
+    if (!root.IsMap())
+        fail(top, root, "expected a scene: a map with keys dimension, box, species, run, ...");
     Scene sc;
     sc.file = file;
     Params tp = read_params(root, top_schema(), top);
@@ -246,8 +268,8 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
 
     // Species and interactions.
     YAML::Node rs, ri;
-    sc.species = read_species(child(root, "species"), child(root, "interactions"), tp.has("particles") ? tp.integer("particles") : 0,
-                              top, rs, ri);
+    sc.species = read_species(child(root, "species"), child(root, "interactions"),
+                              tp.has("particles") ? tp.integer("particles") : 0, top, rs, ri);
     if (tp.has("particles") && std::int64_t(sc.species.total_count()) != tp.integer("particles")) {
         tp.fail("particles", fmt::format("species counts add up to {}, not to particles = {}",
                                          sc.species.total_count(), tp.integer("particles")));
@@ -255,7 +277,8 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     for (auto& s : sc.species.species) {
         if (s.inertia_factor == 0) s.inertia_factor = d == 2 ? 0.5 : 0.4;
     }
-    for (std::size_t k = 0; k < sc.species.size(); ++k) rs[k]["inertia_factor"] = sc.species.species[k].inertia_factor;
+    for (std::size_t k = 0; k < sc.species.size(); ++k)
+        rs[k]["inertia_factor"] = sc.species.species[k].inertia_factor;
     res["particles"] = sc.species.total_count();
     res["species"] = rs;
     res["interactions"] = ri;
@@ -265,19 +288,24 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     Params bp = read_params(child(root, "box"), box_schema(), wb);
     const double vd = d == 2 ? std::numbers::pi / 4 : std::numbers::pi / 6;
     double particle_volume = 0;
-    for (const auto& s : sc.species.species) particle_volume += double(s.count) * vd * std::pow(s.diameter, d);
+    for (const auto& s : sc.species.species)
+        particle_volume += double(s.count) * vd * std::pow(s.diameter, d);
     if (bp.has("lengths") == bp.has("packing_fraction")) {
         bp.fail("", "give exactly one of 'lengths' or 'packing_fraction'");
     }
     if (bp.has("lengths")) {
         sc.box_length = bp.reals("lengths");
         if (int(sc.box_length.size()) != d) {
-            bp.fail("lengths", fmt::format("expected {} lengths (one per axis), got {}", d, sc.box_length.size()));
+            bp.fail("lengths", fmt::format("expected {} lengths (one per axis), got {}", d,
+                                           sc.box_length.size()));
         }
-        if (bp.has("aspect")) bp.fail("aspect", "'aspect' goes with packing_fraction, not with lengths");
+        if (bp.has("aspect"))
+            bp.fail("aspect", "'aspect' goes with packing_fraction, not with lengths");
     } else {
-        std::vector<double> aspect = bp.has("aspect") ? bp.reals("aspect") : std::vector<double>(std::size_t(d), 1.0);
-        if (int(aspect.size()) != d) bp.fail("aspect", fmt::format("expected {} ratios, got {}", d, aspect.size()));
+        std::vector<double> aspect =
+            bp.has("aspect") ? bp.reals("aspect") : std::vector<double>(std::size_t(d), 1.0);
+        if (int(aspect.size()) != d)
+            bp.fail("aspect", fmt::format("expected {} ratios, got {}", d, aspect.size()));
         double prod = 1;
         for (double a : aspect) prod *= a;
         const double volume = particle_volume / bp.real("packing_fraction");
@@ -286,7 +314,9 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     }
     if (bp.has("periodic")) {
         const auto per = bp.booleans("periodic");
-        if (int(per.size()) != d) bp.fail("periodic", fmt::format("expected {} flags (one per axis), got {}", d, per.size()));
+        if (int(per.size()) != d)
+            bp.fail("periodic",
+                    fmt::format("expected {} flags (one per axis), got {}", d, per.size()));
         sc.periodic.assign(per.begin(), per.end());
     } else {
         sc.periodic.assign(std::size_t(d), true);
@@ -298,16 +328,19 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     for (int a = 0; a < d; ++a) {
         const double need = sc.periodic[a] ? 2 * dmax : dmax;
         if (sc.box_length[a] < need) {
-            bp.fail(bp.has("lengths") ? "lengths" : "packing_fraction",
-                    fmt::format("box length {:.4g} along axis {} is below {:.4g} ({})", sc.box_length[a], a, need,
-                                sc.periodic[a] ? "twice the largest diameter, needed on a periodic axis"
-                                               : "the largest diameter"));
+            bp.fail(
+                bp.has("lengths") ? "lengths" : "packing_fraction",
+                fmt::format("box length {:.4g} along axis {} is below {:.4g} ({})",
+                            sc.box_length[a], a, need,
+                            sc.periodic[a] ? "twice the largest diameter, needed on a periodic axis"
+                                           : "the largest diameter"));
         }
     }
     if (sc.packing_fraction > max_packing_fraction(d)) {
         bp.fail(bp.has("lengths") ? "lengths" : "packing_fraction",
-                fmt::format("packing fraction {:.4g} exceeds the densest packing {:.4f} of {}", sc.packing_fraction,
-                            max_packing_fraction(d), d == 2 ? "disks" : "spheres"));
+                fmt::format("packing fraction {:.4g} exceeds the densest packing {:.4f} of {}",
+                            sc.packing_fraction, max_packing_fraction(d),
+                            d == 2 ? "disks" : "spheres"));
     }
     YAML::Node rb;
     for (double l : sc.box_length) rb["lengths"].push_back(l);
@@ -329,13 +362,15 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
 
     // Run schedule.
     Params rp = read_params(child(root, "run"), run_schema(), top.child("run"));
-    sc.schedule.unit = rp.str("unit") == "time" ? ScheduleUnit::Time : ScheduleUnit::CollisionsPerParticle;
+    sc.schedule.unit =
+        rp.str("unit") == "time" ? ScheduleUnit::Time : ScheduleUnit::CollisionsPerParticle;
     sc.schedule.equilibration = rp.real("equilibration");
     sc.schedule.measurement = rp.real("measurement");
     sc.schedule.sample_interval = rp.real("sample_interval");
     sc.progress_interval = rp.real("progress_interval");
     if (sc.schedule.sample_interval > sc.schedule.measurement) {
-        rp.fail("sample_interval", "sample_interval is longer than the measurement: no sample would be taken");
+        rp.fail("sample_interval",
+                "sample_interval is longer than the measurement: no sample would be taken");
     }
     if (sc.schedule.measurement / sc.schedule.sample_interval > 1e8) {
         rp.fail("sample_interval", "more than 1e8 samples: increase sample_interval");

@@ -9,7 +9,8 @@ thread_local std::vector<std::pair<std::string, std::string>> g_overrides;
 
 const std::string* override_for(const std::string& path) {
     for (const auto& [p, assignment] : g_overrides) {
-        if (path == p || path.rfind(p + ".", 0) == 0 || path.rfind(p + "[", 0) == 0) return &assignment;
+        if (path == p || path.rfind(p + ".", 0) == 0 || path.rfind(p + "[", 0) == 0)
+            return &assignment;
     }
     return nullptr;
 }
@@ -18,7 +19,9 @@ const std::string* override_for(const std::string& path) {
 OverrideScope::OverrideScope(std::vector<std::pair<std::string, std::string>> path_and_assignment) {
     g_overrides = std::move(path_and_assignment);
 }
-OverrideScope::~OverrideScope() { g_overrides.clear(); }
+OverrideScope::~OverrideScope() {
+    g_overrides.clear();
+}
 
 std::string locate(const Where& where, const YAML::Node& node) {
     if (const std::string* a = override_for(where.path)) return "--set '" + *a + "': " + where.path;

@@ -21,7 +21,7 @@ struct Where {
 };
 
 class SceneError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -29,7 +29,8 @@ public:
 std::string locate(const Where& where, const YAML::Node& node);
 
 // Command-line overrides in force while a scene is validated: an error at (or below) an overridden
-// key names the `--set` assignment instead of a file position. Paths in Where form ("species[1].mass").
+// key names the `--set` assignment instead of a file position. Paths in Where form
+// ("species[1].mass").
 struct OverrideScope {
     explicit OverrideScope(std::vector<std::pair<std::string, std::string>> path_and_assignment);
     ~OverrideScope();

@@ -13,7 +13,7 @@ namespace {
 
 template <int D>
 class CollisionStatistics final : public Observable<D> {
-public:
+  public:
     CollisionStatistics(const Params&, const SceneInfo& info) : table_(*info.species) {
         const std::size_t ns = table_.size();
         pair_increments_.resize(ns * ns);
@@ -25,7 +25,8 @@ public:
         if (started_ && ctx.measuring) {
             dt_.push(ctx.time - last_time_);
             dtotal_.push(double(total - last_total_));
-            for (std::size_t k = 0; k < pc.size(); ++k) pair_increments_[k].push(double(pc[k] - last_pairs_[k]));
+            for (std::size_t k = 0; k < pc.size(); ++k)
+                pair_increments_[k].push(double(pc[k] - last_pairs_[k]));
         }
         if (ctx.measuring) started_ = true;
         last_time_ = ctx.time;
@@ -58,18 +59,19 @@ public:
                 const Estimate r = ratio_of_means(inc.values(), dt_.values());
                 // Frequency seen by one particle of a (colliding with b), and by one of b.
                 const double fa = (a == b ? 2.0 : 1.0) / double(table_.species[a].count);
-                write_estimate(gp, "frequency_" + table_.species[a].name, Estimate{r.value * fa, r.error * fa}, "1/time", ps);
+                write_estimate(gp, "frequency_" + table_.species[a].name,
+                               Estimate{r.value * fa, r.error * fa}, "1/time", ps);
                 if (a != b) {
                     const double fb = 1.0 / double(table_.species[b].count);
-                    write_estimate(gp, "frequency_" + table_.species[b].name, Estimate{r.value * fb, r.error * fb}, "1/time",
-                                   ps);
+                    write_estimate(gp, "frequency_" + table_.species[b].name,
+                                   Estimate{r.value * fb, r.error * fb}, "1/time", ps);
                 }
                 summary["pairs"][pair] = ps;
             }
         }
     }
 
-private:
+  private:
     const SpeciesTable& table_;
     bool started_ = false;
     double last_time_ = 0;
@@ -81,7 +83,8 @@ private:
 };
 
 const bool registered = register_plugin<Observable, CollisionStatistics>(
-    "collision_statistics", "collision counts and frequencies per particle and per species pair", {});
+    "collision_statistics", "collision counts and frequencies per particle and per species pair",
+    {});
 
 }  // namespace
 }  // namespace gran

@@ -10,7 +10,7 @@ namespace {
 
 template <int D>
 class KineticEnergy final : public Observable<D> {
-public:
+  public:
     KineticEnergy(const Params&, const SceneInfo& info) : table_(*info.species) {}
 
     void sample(const SampleContext<D>& ctx) override {
@@ -36,10 +36,11 @@ public:
         g.attr_on("energy_per_particle", "unit", "energy");
         g.write("collisions_per_particle", cpp_);
         g.write("measuring", phase_);
-        if (measured_.size() > 0) write_estimate(g, "mean_energy_per_particle", measured_.estimate(), "energy", summary);
+        if (measured_.size() > 0)
+            write_estimate(g, "mean_energy_per_particle", measured_.estimate(), "energy", summary);
     }
 
-private:
+  private:
     const SpeciesTable& table_;
     std::vector<double> time_, energy_, cpp_;
     std::vector<std::int64_t> phase_;
@@ -47,7 +48,8 @@ private:
 };
 
 const bool registered = register_plugin<Observable, KineticEnergy>(
-    "kinetic_energy", "total kinetic energy per particle over time (equilibration and measurement)", {});
+    "kinetic_energy", "total kinetic energy per particle over time (equilibration and measurement)",
+    {});
 
 }  // namespace
 }  // namespace gran

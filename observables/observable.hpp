@@ -25,7 +25,7 @@ struct SampleContext {
 
 template <int D>
 class Observable {
-public:
+  public:
     virtual ~Observable() = default;
     // Non-null to receive every collision (costs a record per collision; only when asked).
     virtual CollisionSink<D>* collision_sink() { return nullptr; }
@@ -34,8 +34,8 @@ public:
 };
 
 // Writes a scalar estimate as a dataset with `error` and `unit` attributes, and into the summary.
-inline void write_estimate(h5::Group& g, const std::string& name, const Estimate& e, const std::string& unit,
-                           YAML::Node& summary) {
+inline void write_estimate(h5::Group& g, const std::string& name, const Estimate& e,
+                           const std::string& unit, YAML::Node& summary) {
     g.write_scalar(name, e.value);
     g.attr_on(name, "error", e.error);
     g.attr_on(name, "unit", unit);
@@ -46,6 +46,8 @@ inline void write_estimate(h5::Group& g, const std::string& name, const Estimate
     summary[name] = s;
 }
 
-inline const char* component_name(int a) { return a == 0 ? "x" : (a == 1 ? "y" : "z"); }
+inline const char* component_name(int a) {
+    return a == 0 ? "x" : (a == 1 ? "y" : "z");
+}
 
 }  // namespace gran

@@ -1,8 +1,9 @@
-// Per-species, per-component translational temperatures T_{s,a} = m_s <(v_a - U_a)^2> (U: centre-of-
-// mass velocity), rotational temperatures (I <w^2> per rotational degree of freedom), the mixture
-// temperature, temperature ratios gamma = T_s / T_ref (total, per component, rotational; Barrat &
-// Trizac 2002 Tables I-II) and the Sonine coefficient a2 = d/(d+2) <c^4>/<c^2>^2 - 1 per species.
-// Ratios and a2 are ratios of time averages with jackknife errors over decorrelated blocks.
+// Per-species, per-component translational temperatures T_{s,a} = m_s <(v_a - U_a)^2> (U:
+// centre-of- mass velocity), rotational temperatures (I <w^2> per rotational degree of freedom),
+// the mixture temperature, temperature ratios gamma = T_s / T_ref (total, per component,
+// rotational; Barrat & Trizac 2002 Tables I-II) and the Sonine coefficient a2 = d/(d+2)
+// <c^4>/<c^2>^2 - 1 per species. Ratios and a2 are ratios of time averages with jackknife errors
+// over decorrelated blocks.
 #include <fmt/format.h>
 
 #include <array>
@@ -15,9 +16,10 @@ namespace {
 
 template <int D>
 class Temperatures final : public Observable<D> {
-public:
+  public:
     Temperatures(const Params& p, const SceneInfo& info) : table_(*info.species) {
-        const std::string ref = p.has("reference_species") ? p.str("reference_species") : table_.species[0].name;
+        const std::string ref =
+            p.has("reference_species") ? p.str("reference_species") : table_.species[0].name;
         ref_ = table_.index_of(ref);
         if (ref_ == table_.size()) p.fail("reference_species", "unknown species '" + ref + "'");
         per_species_.resize(table_.size());
@@ -66,8 +68,8 @@ public:
             q.v2.push(sumv2[s] / n);
             q.v4.push(sum4[s] / n);
             if (rotating_) {
-                const double inertia = table_.species[s].inertia_factor * m * table_.species[s].diameter *
-                                       table_.species[s].diameter / 4;
+                const double inertia = table_.species[s].inertia_factor * m *
+                                       table_.species[s].diameter * table_.species[s].diameter / 4;
                 q.t_rot.push(inertia * sumr[s] / n / (D == 2 ? 1.0 : 3.0));
             }
             t_mix += t_total * n;
@@ -101,9 +103,9 @@ public:
             }
             if (q.v2.size() > 0) {
                 const double k = double(D) / (D + 2.0);
-                const Estimate a2 = jackknife({q.v4.values(), q.v2.values()}, [k](std::span<const double> m) {
-                    return k * m[0] / (m[1] * m[1]) - 1.0;
-                });
+                const Estimate a2 = jackknife(
+                    {q.v4.values(), q.v2.values()},
+                    [k](std::span<const double> m) { return k * m[0] / (m[1] * m[1]) - 1.0; });
                 write_estimate(gs, "sonine_a2", a2, "", ss);
             }
             summary["species"][name] = ss;
@@ -117,14 +119,17 @@ public:
                 write_estimate(gr, std::string("gamma_") + component_name(a),
                                ratio_of_means(q.t_comp[a].values(), r.t_comp[a].values()), "", rs);
             }
-            if (rotating_) write_estimate(gr, "gamma_rot", ratio_of_means(q.t_rot.values(), r.t_rot.values()), "", rs);
+            if (rotating_)
+                write_estimate(gr, "gamma_rot", ratio_of_means(q.t_rot.values(), r.t_rot.values()),
+                               "", rs);
             summary["ratios"][rname] = rs;
         }
         g.attr("reference_species", table_.species[ref_].name);
-        g.attr("definition", "T_{s,a} = m_s <(v_a - U_a)^2>, U centre-of-mass velocity; gamma = T_s / T_ref");
+        g.attr("definition",
+               "T_{s,a} = m_s <(v_a - U_a)^2>, U centre-of-mass velocity; gamma = T_s / T_ref");
     }
 
-private:
+  private:
     struct PerSpecies {
         Series t;
         std::array<Series, D> t_comp;
@@ -141,9 +146,11 @@ private:
 
 const bool registered = register_plugin<Observable, Temperatures>(
     "temperatures",
-    "per-species and per-component temperatures, rotational temperatures, ratios gamma = T_s/T_ref, "
+    "per-species and per-component temperatures, rotational temperatures, ratios gamma = "
+    "T_s/T_ref, "
     "Sonine a2",
-    {optional(text("reference_species", "", "species whose temperature divides the ratios (default: first)"))});
+    {optional(text("reference_species", "",
+                   "species whose temperature divides the ratios (default: first)"))});
 
 }  // namespace
 }  // namespace gran

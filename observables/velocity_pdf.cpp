@@ -1,9 +1,9 @@
 // Velocity distributions per species and component: raw P(v_a) and rescaled P(c_a) with
-// c_a = (v_a - U_a) / sqrt(T_{s,a}/m_s) using the instantaneous species-component temperature (so the
-// rescaled PDF is meaningful in cooling states too; Barrat & Trizac 2002 Figs. 6-7, 17). Histograms
-// are Boost.Histogram regular axes. Error bars: the measurement is split into `blocks` consecutive
-// blocks; the error of each bin is the standard error of the block densities. The kurtosis
-// <c_a^4>/<c_a^2>^2 (3 for a Gaussian) is reported with a jackknife error.
+// c_a = (v_a - U_a) / sqrt(T_{s,a}/m_s) using the instantaneous species-component temperature (so
+// the rescaled PDF is meaningful in cooling states too; Barrat & Trizac 2002 Figs. 6-7, 17).
+// Histograms are Boost.Histogram regular axes. Error bars: the measurement is split into `blocks`
+// consecutive blocks; the error of each bin is the standard error of the block densities. The
+// kurtosis <c_a^4>/<c_a^2>^2 (3 for a Gaussian) is reported with a jackknife error.
 #include <boost/histogram.hpp>
 #include <cmath>
 #include <vector>
@@ -13,7 +13,8 @@
 namespace gran {
 namespace {
 
-using Histogram = decltype(boost::histogram::make_histogram(boost::histogram::axis::regular<>(1, 0.0, 1.0)));
+using Histogram =
+    decltype(boost::histogram::make_histogram(boost::histogram::axis::regular<>(1, 0.0, 1.0)));
 
 struct BlockedHistogram {
     std::vector<Histogram> blocks;
@@ -35,7 +36,8 @@ struct BlockedHistogram {
             per_block.push_back(d);
         }
         for (std::size_t b = 0; b < blocks.size(); ++b) {
-            for (std::size_t k = 0; k < nb; ++k) density[k] += blocks[b].at(int(k)) / (total * width);
+            for (std::size_t k = 0; k < nb; ++k)
+                density[k] += blocks[b].at(int(k)) / (total * width);
         }
         const double nblk = double(per_block.size());
         if (nblk >= 2) {
@@ -54,7 +56,7 @@ struct BlockedHistogram {
 
 template <int D>
 class VelocityPdf final : public Observable<D> {
-public:
+  public:
     VelocityPdf(const Params& p, const SceneInfo& info)
         : table_(*info.species),
           bins_(static_cast<unsigned>(p.integer("bins"))),
@@ -69,8 +71,8 @@ public:
         const auto& p = ctx.engine.particles();
         const std::size_t ns = table_.size();
         if (!initialised_) init(ctx);
-        const std::size_t block =
-            std::min(nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
+        const std::size_t block = std::min(
+            nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
         ++samples_;
         Vec<D> mom = Vec<D>::Zero();
         double mass = 0;
@@ -123,8 +125,9 @@ public:
                 gc.attr_on("raw_edges", "unit", "velocity");
                 gc.attr_on("scaled_edges", "unit", "sqrt(T_{s,a}/m_s)");
                 YAML::Node ks;
-                const Estimate k = jackknife({per_[s].c4[a].values(), per_[s].c2[a].values()},
-                                             [](std::span<const double> m) { return m[0] / (m[1] * m[1]); });
+                const Estimate k =
+                    jackknife({per_[s].c4[a].values(), per_[s].c2[a].values()},
+                              [](std::span<const double> m) { return m[0] / (m[1] * m[1]); });
                 write_estimate(gc, "kurtosis", k, "", ks);
                 summary[name][component_name(a)] = ks;
             }
@@ -133,7 +136,7 @@ public:
         g.attr("normalisation", "density: integral over all bins plus out-of-range mass equals 1");
     }
 
-private:
+  private:
     struct PerSpecies {
         std::array<BlockedHistogram, D> raw, scaled;
         std::array<Series, D> c2, c4;
@@ -153,12 +156,15 @@ private:
                     ++c;
                 }
             }
-            const double vr = raw_range_ > 0 ? raw_range_ : 6.0 * std::sqrt(t / double(std::max<std::size_t>(c, 1)) / m);
+            const double vr = raw_range_ > 0
+                                  ? raw_range_
+                                  : 6.0 * std::sqrt(t / double(std::max<std::size_t>(c, 1)) / m);
             for (int a = 0; a < D; ++a) {
-                per_[s].raw[a].blocks.assign(nblocks_, bh::make_histogram(bh::axis::regular<>(bins_, -vr, vr)));
+                per_[s].raw[a].blocks.assign(
+                    nblocks_, bh::make_histogram(bh::axis::regular<>(bins_, -vr, vr)));
                 per_[s].raw[a].entries.assign(nblocks_, 0);
-                per_[s].scaled[a].blocks.assign(nblocks_,
-                                                bh::make_histogram(bh::axis::regular<>(bins_, -range_, range_)));
+                per_[s].scaled[a].blocks.assign(
+                    nblocks_, bh::make_histogram(bh::axis::regular<>(bins_, -range_, range_)));
                 per_[s].scaled[a].entries.assign(nblocks_, 0);
             }
         }
@@ -176,13 +182,16 @@ private:
 };
 
 const bool registered = register_plugin<Observable, VelocityPdf>(
-    "velocity_pdf", "velocity distributions per species and component, raw and rescaled by sqrt(T), with kurtosis",
+    "velocity_pdf",
+    "velocity distributions per species and component, raw and rescaled by sqrt(T), with kurtosis",
     {integer("bins", "60", "histogram bins", 4, 100000),
-     real("range", "6", "sqrt(T/m)", "rescaled histograms cover c in [-range, range]", 0, 1e308, true),
-     optional(real("raw_range", "", "velocity",
-                   "raw histograms cover v in [-raw_range, raw_range] (default: 6 thermal velocities at the "
-                   "first sample)",
-                   0, 1e308, true)),
+     real("range", "6", "sqrt(T/m)", "rescaled histograms cover c in [-range, range]", 0, 1e308,
+          true),
+     optional(real(
+         "raw_range", "", "velocity",
+         "raw histograms cover v in [-raw_range, raw_range] (default: 6 thermal velocities at the "
+         "first sample)",
+         0, 1e308, true)),
      integer("blocks", "16", "blocks for the error bars of the densities", 2, 1000)});
 
 }  // namespace

@@ -45,8 +45,8 @@ inline AngVec<D> cross_n(const Vec<D>& n, const Vec<D>& p) {
 // Returns the normal impulse on particle 1 as smooth_collision does.
 template <int D>
 inline double rough_collision(Vec<D>& v1, Vec<D>& v2, AngVec<D>& w1, AngVec<D>& w2, double m1,
-                              double m2, double s1, double s2, double q1, double q2, const Vec<D>& n,
-                              double alpha, double beta) {
+                              double m2, double s1, double s2, double q1, double q2,
+                              const Vec<D>& n, double alpha, double beta) {
     const AngVec<D> wsum = 0.5 * s1 * w1 + 0.5 * s2 * w2;
     const Vec<D> g = v1 - v2 - cross_w<D>(wsum, n);
     const double gn = g.dot(n);

@@ -8,9 +8,11 @@ namespace {
 const bool registered = PairLawRegistry::instance().add(PairLaw{
     "constant_restitution",
     "hard-particle collision with constant normal (alpha) and tangential (beta) restitution",
-    {real("alpha", "1", "", "normal restitution coefficient alpha_ij (1 = elastic)", 0, 1, true, false),
+    {real("alpha", "1", "", "normal restitution coefficient alpha_ij (1 = elastic)", 0, 1, true,
+          false),
      real("beta", "-1", "",
-          "tangential restitution coefficient beta_ij (-1 = smooth, no rotation; 1 = perfectly rough)",
+          "tangential restitution coefficient beta_ij (-1 = smooth, no rotation; 1 = perfectly "
+          "rough)",
           -1, 1)},
     [](const Params& p, PairCoefficients& c) {
         c.alpha = p.real("alpha");

@@ -19,7 +19,7 @@ struct PairLaw {
 };
 
 class PairLawRegistry {
-public:
+  public:
     static PairLawRegistry& instance() {
         static PairLawRegistry r;
         return r;
@@ -43,7 +43,7 @@ public:
         return v;
     }
 
-private:
+  private:
     std::map<std::string, PairLaw> laws_;
 };
 

@@ -22,8 +22,8 @@ struct Species {
 // Coefficients of one unordered species pair.
 struct PairCoefficients {
     std::string law = "constant_restitution";
-    double alpha = 1;   // normal restitution, (0, 1]
-    double beta = -1;   // tangential restitution, [-1, 1]; -1 = smooth
+    double alpha = 1;  // normal restitution, (0, 1]
+    double beta = -1;  // tangential restitution, [-1, 1]; -1 = smooth
 };
 
 struct SpeciesTable {
@@ -33,7 +33,9 @@ struct SpeciesTable {
     std::size_t size() const { return species.size(); }
     std::size_t total_count() const;
     double max_diameter() const;
-    const PairCoefficients& pair(std::size_t a, std::size_t b) const { return pairs[a * size() + b]; }
+    const PairCoefficients& pair(std::size_t a, std::size_t b) const {
+        return pairs[a * size() + b];
+    }
     PairCoefficients& pair(std::size_t a, std::size_t b) { return pairs[a * size() + b]; }
     // True when some pair has beta != -1: only then are angular velocities allocated.
     bool rough() const;
@@ -47,7 +49,7 @@ Schema pair_override_schema();
 // number_fraction entries. Resolved YAML (defaults, counts) is stored into `resolved_species` and
 // `resolved_interactions`.
 SpeciesTable read_species(const YAML::Node& species, const YAML::Node& interactions,
-                          std::int64_t total_particles, const Where& where, YAML::Node& resolved_species,
-                          YAML::Node& resolved_interactions);
+                          std::int64_t total_particles, const Where& where,
+                          YAML::Node& resolved_species, YAML::Node& resolved_interactions);
 
 }  // namespace gran

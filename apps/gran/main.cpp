@@ -1,9 +1,9 @@
 // gran: the command-line program. `gran run`, `gran check`, `gran list`.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <filesystem>
@@ -19,11 +19,14 @@ namespace {
 
 std::atomic<bool> g_interrupt{false};
 
-extern "C" void on_signal(int) { g_interrupt.store(true); }
+extern "C" void on_signal(int) {
+    g_interrupt.store(true);
+}
 
 void print_schema(const gran::Schema& schema) {
     for (const auto& s : schema) {
-        std::string def = s.default_value.empty() ? (s.optional ? "optional" : "required") : "default " + s.default_value;
+        std::string def = s.default_value.empty() ? (s.optional ? "optional" : "required")
+                                                  : "default " + s.default_value;
         std::cout << fmt::format("    {:<18} {} ({})\n", s.name, gran::describe(s), def);
         std::cout << fmt::format("    {:<18}   {}\n", "", s.doc);
     }
@@ -46,13 +49,17 @@ int cmd_list(const std::string& what) {
             print_schema(sec.schema);
         }
     }
-    if (what.empty() || what == "laws") print_plugins("laws (interactions.law)", gran::PairLawRegistry::instance().all());
-    if (what.empty() || what == "drivers") print_plugins("drivers", gran::Registry<gran::Driver>::instance().all());
+    if (what.empty() || what == "laws")
+        print_plugins("laws (interactions.law)", gran::PairLawRegistry::instance().all());
+    if (what.empty() || what == "drivers")
+        print_plugins("drivers", gran::Registry<gran::Driver>::instance().all());
     if (what.empty() || what == "observables") {
         print_plugins("observables", gran::Registry<gran::Observable>::instance().all());
     }
-    if (!what.empty() && what != "scene" && what != "laws" && what != "drivers" && what != "observables") {
-        std::cerr << "gran list: unknown category '" << what << "'; expected scene, laws, drivers or observables\n";
+    if (!what.empty() && what != "scene" && what != "laws" && what != "drivers" &&
+        what != "observables") {
+        std::cerr << "gran list: unknown category '" << what
+                  << "'; expected scene, laws, drivers or observables\n";
         return 2;
     }
     return 0;
@@ -72,8 +79,8 @@ void print_headline(const YAML::Node& summary) {
         if (!ratios) continue;
         for (auto r = ratios.begin(); r != ratios.end(); ++r) {
             const YAML::Node g = r->second["gamma"];
-            std::cout << fmt::format("gamma ({}) = {:.4f} +- {:.4f}\n", r->first.as<std::string>(), g["value"].as<double>(),
-                                     g["error"].as<double>());
+            std::cout << fmt::format("gamma ({}) = {:.4f} +- {:.4f}\n", r->first.as<std::string>(),
+                                     g["value"].as<double>(), g["error"].as<double>());
         }
     }
 }
@@ -81,11 +88,13 @@ void print_headline(const YAML::Node& summary) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"gran: event-driven simulations of granular gases (inelastic hard disks and spheres)"};
+    CLI::App app{
+        "gran: event-driven simulations of granular gases (inelastic hard disks and spheres)"};
     app.require_subcommand(1);
     std::string log_level = "info";
     bool quiet = false;
-    app.add_option("--log-level", log_level, "trace, debug, info, warn, error, off")->capture_default_str();
+    app.add_option("--log-level", log_level, "trace, debug, info, warn, error, off")
+        ->capture_default_str();
     app.add_flag("-q,--quiet", quiet, "no progress line and only warnings");
 
     auto* run = app.add_subcommand("run", "run a scene and write OUT.h5 plus OUT.summary.yaml");
@@ -93,15 +102,18 @@ int main(int argc, char** argv) {
     std::vector<std::string> sets;
     run->add_option("scene", scene_file, "scene file (YAML)")->required();
     run->add_option("-o,--output", output, "result file (default results/<scene>.h5)");
-    run->add_option("--set", sets, "override a scene key, e.g. --set run.measurement=100 (repeatable)");
+    run->add_option("--set", sets,
+                    "override a scene key, e.g. --set run.measurement=100 (repeatable)");
 
-    auto* check = app.add_subcommand("check", "validate a scene (and its initial placement) without running");
+    auto* check =
+        app.add_subcommand("check", "validate a scene (and its initial placement) without running");
     check->add_option("scene", scene_file, "scene file (YAML)")->required();
     check->add_option("--set", sets, "override a scene key (repeatable)");
 
     run->fallthrough();
     check->fallthrough();
-    auto* list = app.add_subcommand("list", "document scene sections and plugins with their parameters");
+    auto* list =
+        app.add_subcommand("list", "document scene sections and plugins with their parameters");
     std::string what;
     list->add_option("what", what, "scene, laws, drivers or observables (default: all)");
 
@@ -115,8 +127,9 @@ int main(int argc, char** argv) {
         gran::Scene scene = gran::load_scene(scene_file, sets);
         if (check->parsed()) {
             gran::check_scene(scene);
-            std::cout << fmt::format("{}: ok ({}D, {} particles, packing fraction {:.4g})\n", scene_file,
-                                     scene.dimension, scene.species.total_count(), scene.packing_fraction);
+            std::cout << fmt::format("{}: ok ({}D, {} particles, packing fraction {:.4g})\n",
+                                     scene_file, scene.dimension, scene.species.total_count(),
+                                     scene.packing_fraction);
             return 0;
         }
         if (output.empty()) output = default_output(scene_file);
@@ -128,8 +141,8 @@ int main(int argc, char** argv) {
         opt.terminal = isatty(STDERR_FILENO) != 0;
         opt.command_line.assign(argv, argv + argc);
         opt.interrupt = &g_interrupt;
-        spdlog::info("running {} ({}D, {} particles, packing fraction {:.4g})", scene_file, scene.dimension,
-                     scene.species.total_count(), scene.packing_fraction);
+        spdlog::info("running {} ({}D, {} particles, packing fraction {:.4g})", scene_file,
+                     scene.dimension, scene.species.total_count(), scene.packing_fraction);
         const gran::RunReport rep = gran::run_scene(scene, opt);
         print_headline(rep.summary);
         std::cout << fmt::format("result: {}\nsummary: {}\n", rep.output, rep.summary_file);

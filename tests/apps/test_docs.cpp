@@ -20,7 +20,8 @@ std::string read_doc() {
 }
 
 void expect_documented(const std::string& doc, const std::string& key, const std::string& where) {
-    EXPECT_NE(doc.find("`" + key + "`"), std::string::npos) << where << ": key `" << key << "` is not documented";
+    EXPECT_NE(doc.find("`" + key + "`"), std::string::npos)
+        << where << ": key `" << key << "` is not documented";
 }
 
 TEST(Docs, SceneReferenceMentionsEveryDeclaredKey) {

@@ -45,7 +45,9 @@ double kinetic_energy(const Particles<D>& p, const SpeciesTable& t) {
     for (std::size_t i = 0; i < p.size(); ++i) {
         const auto& s = t.species[p.species[i]];
         e += 0.5 * s.mass * p.v[i].squaredNorm();
-        if (p.rotating()) e += 0.5 * s.inertia_factor * s.mass * s.diameter * s.diameter / 4 * ang_squared<D>(p.w[i]);
+        if (p.rotating())
+            e += 0.5 * s.inertia_factor * s.mass * s.diameter * s.diameter / 4 *
+                 ang_squared<D>(p.w[i]);
     }
     return e;
 }
@@ -58,7 +60,8 @@ Vec<D> momentum(const Particles<D>& p, const SpeciesTable& t) {
 }
 
 template <int D>
-void check_elastic_conservation(int ns, bool periodic, std::uint64_t collisions, double beta, double q) {
+void check_elastic_conservation(int ns, bool periodic, std::uint64_t collisions, double beta,
+                                double q) {
     const auto table = make_table(ns, 1.0, beta, 3.0, ns == 1 ? 400 : 200, q);
     const auto box = cube_for<D>(table, 0.2, periodic);
     Rng rng = make_rng(7, Stream::Placement);
@@ -80,7 +83,8 @@ void check_elastic_conservation(int ns, bool periodic, std::uint64_t collisions,
     double worst = 1;
     for (std::size_t i = 0; i < q_.size(); ++i) {
         for (std::size_t j = i + 1; j < q_.size(); ++j) {
-            const double sig = 0.5 * (table.species[q_.species[i]].diameter + table.species[q_.species[j]].diameter);
+            const double sig = 0.5 * (table.species[q_.species[i]].diameter +
+                                      table.species[q_.species[j]].diameter);
             worst = std::min(worst, box.separation(q_.r[i], q_.r[j]).norm() / sig);
         }
     }
@@ -103,7 +107,9 @@ TEST(EventDrivenEngine, ElasticBinarySpheresConserveEnergyOverAMillionCollisions
 TEST(EventDrivenEngine, ElasticBinaryDisksBetweenWallsConserveEnergy) {
     check_elastic_conservation<2>(2, false, 200000, -1, 0.5);
 }
-TEST(EventDrivenEngine, PerfectlyRoughSpheresConserveEnergy) { check_elastic_conservation<3>(2, true, 200000, 1.0, 0.4); }
+TEST(EventDrivenEngine, PerfectlyRoughSpheresConserveEnergy) {
+    check_elastic_conservation<3>(2, true, 200000, 1.0, 0.4);
+}
 
 TEST(PairCollisionTime, ApproachingOverlappingPairCollidesNow) {
     const Vec<2> dr(0.999, 0.0), dv(-1.0, 0.0);

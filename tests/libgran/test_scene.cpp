@@ -40,10 +40,13 @@ TEST(Scene, ResolvedSceneIsItselfAValidSceneThatRerunsIdentically) {
     auto file = h5::File::open_read((testing::temp_dir() / "first.h5").string());
     const std::string resolved = file.root().read_string("parameters/scene");
     const YAML::Node b = testing::run_yaml(resolved, "second");
-    const auto ga = a["observables"]["temperatures"]["ratios"]["light_over_heavy"]["gamma"]["value"].as<double>();
-    const auto gb = b["observables"]["temperatures"]["ratios"]["light_over_heavy"]["gamma"]["value"].as<double>();
+    const auto ga = a["observables"]["temperatures"]["ratios"]["light_over_heavy"]["gamma"]["value"]
+                        .as<double>();
+    const auto gb = b["observables"]["temperatures"]["ratios"]["light_over_heavy"]["gamma"]["value"]
+                        .as<double>();
     EXPECT_EQ(ga, gb);
-    EXPECT_EQ(a["performance"]["events"].as<std::uint64_t>(), b["performance"]["events"].as<std::uint64_t>());
+    EXPECT_EQ(a["performance"]["events"].as<std::uint64_t>(),
+              b["performance"]["events"].as<std::uint64_t>());
 }
 
 TEST(Scene, OverrideChangesNestedKeysAndListEntries) {
@@ -60,7 +63,9 @@ TEST(Scene, OverrideChangesNestedKeysAndListEntries) {
 }
 
 TEST(Scene, ErrorsNameFileLineColumnAndKey) {
-    const std::string bad = "dimension: 2\nspecies:\n  - {name: a, mass: -1, count: 10}\nbox: {packing_fraction: 0.1}\nrun: {measurement: 1}\n";
+    const std::string bad =
+        "dimension: 2\nspecies:\n  - {name: a, mass: -1, count: 10}\nbox: {packing_fraction: "
+        "0.1}\nrun: {measurement: 1}\n";
     try {
         parse_scene(YAML::Load(bad), "bad.yaml");
         FAIL() << "negative mass accepted";

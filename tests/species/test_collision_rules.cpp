@@ -49,16 +49,21 @@ void check_smooth(double alpha) {
         const double impulse = smooth_collision<D>(a, b, m1, m2, n, alpha);
         const double mu = m1 * m2 / (m1 + m2);
         EXPECT_LT((m1 * a + m2 * b - p0).norm(), 1e-13 * (1 + p0.norm()));
-        EXPECT_NEAR((a - b).dot(n), -alpha * gn, 1e-13);                     // Eq. (1)-(2)
-        EXPECT_LT(((a - b) - (a - b).dot(n) * n - gt).norm(), 1e-13);        // tangential untouched
-        EXPECT_NEAR(impulse, -mu * (1 + alpha) * gn, 1e-12);                  // Eq. (3)
+        EXPECT_NEAR((a - b).dot(n), -alpha * gn, 1e-13);               // Eq. (1)-(2)
+        EXPECT_LT(((a - b) - (a - b).dot(n) * n - gt).norm(), 1e-13);  // tangential untouched
+        EXPECT_NEAR(impulse, -mu * (1 + alpha) * gn, 1e-12);           // Eq. (3)
         const double e1 = 0.5 * m1 * a.squaredNorm() + 0.5 * m2 * b.squaredNorm();
-        EXPECT_NEAR(e1 - e0, collision_energy_change(mu, 0, gn * gn, 0, alpha, -1), 1e-12 * (1 + e0));
+        EXPECT_NEAR(e1 - e0, collision_energy_change(mu, 0, gn * gn, 0, alpha, -1),
+                    1e-12 * (1 + e0));
     }
 }
 
-TEST(SmoothCollision, DisksConserveMomentumReverseNormalVelocityAndLoseClosedFormEnergy) { check_smooth<2>(0.7); }
-TEST(SmoothCollision, SpheresConserveMomentumReverseNormalVelocityAndLoseClosedFormEnergy) { check_smooth<3>(0.7); }
+TEST(SmoothCollision, DisksConserveMomentumReverseNormalVelocityAndLoseClosedFormEnergy) {
+    check_smooth<2>(0.7);
+}
+TEST(SmoothCollision, SpheresConserveMomentumReverseNormalVelocityAndLoseClosedFormEnergy) {
+    check_smooth<3>(0.7);
+}
 TEST(SmoothCollision, ElasticLimitConservesEnergyExactly) {
     check_smooth<2>(1.0);
     check_smooth<3>(1.0);
@@ -79,18 +84,21 @@ void check_rough(double alpha, double beta, double q1, double q2) {
         const double I1 = q1 * m1 * s1 * s1 / 4, I2 = q2 * m2 * s2 * s2 / 4;
         // Contact geometry: r1 - r2 = n (s1 + s2)/2; place r2 at the origin.
         const Vec<D> r1 = 0.5 * (s1 + s2) * n, r2 = Vec<D>::Zero();
-        auto contact_velocity = [&](const Vec<D>& a, const Vec<D>& b, const AngVec<D>& wa, const AngVec<D>& wb) {
+        auto contact_velocity = [&](const Vec<D>& a, const Vec<D>& b, const AngVec<D>& wa,
+                                    const AngVec<D>& wb) {
             // Eq. (A2)
             return Vec<D>(a - b - cross_w<D>(AngVec<D>(0.5 * s1 * wa + 0.5 * s2 * wb), n));
         };
         const Vec<D> gv = contact_velocity(v1, v2, w1, w2);
         const double gn = gv.dot(n);
         const Vec<D> gt = gv - gn * n;
-        auto energy = [&](const Vec<D>& a, const Vec<D>& b, const AngVec<D>& wa, const AngVec<D>& wb) {
-            return 0.5 * m1 * a.squaredNorm() + 0.5 * m2 * b.squaredNorm() + 0.5 * I1 * ang_squared<D>(wa) +
-                   0.5 * I2 * ang_squared<D>(wb);
+        auto energy = [&](const Vec<D>& a, const Vec<D>& b, const AngVec<D>& wa,
+                          const AngVec<D>& wb) {
+            return 0.5 * m1 * a.squaredNorm() + 0.5 * m2 * b.squaredNorm() +
+                   0.5 * I1 * ang_squared<D>(wa) + 0.5 * I2 * ang_squared<D>(wb);
         };
-        auto angmom = [&](const Vec<D>& a, const Vec<D>& b, const AngVec<D>& wa, const AngVec<D>& wb) {
+        auto angmom = [&](const Vec<D>& a, const Vec<D>& b, const AngVec<D>& wa,
+                          const AngVec<D>& wb) {
             return AngVec<D>(cross_rp<D>(r1, m1 * a) + cross_rp<D>(r2, m2 * b) + I1 * wa + I2 * wb);
         };
         const double e0 = energy(v1, v2, w1, w2);
@@ -101,8 +109,8 @@ void check_rough(double alpha, double beta, double q1, double q2) {
         rough_collision<D>(a, b, wa, wb, m1, m2, s1, s2, q1, q2, n, alpha, beta);
         const Vec<D> g1 = contact_velocity(a, b, wa, wb);
         EXPECT_LT((m1 * a + m2 * b - p0).norm(), 1e-12 * (1 + p0.norm()));
-        EXPECT_NEAR(g1.dot(n), -alpha * gn, 1e-12);                      // Eq. (A8)
-        EXPECT_LT((g1 - g1.dot(n) * n + beta * gt).norm(), 1e-12);       // Eq. (A9)
+        EXPECT_NEAR(g1.dot(n), -alpha * gn, 1e-12);                 // Eq. (A8)
+        EXPECT_LT((g1 - g1.dot(n) * n + beta * gt).norm(), 1e-12);  // Eq. (A9)
         if constexpr (D == 2) {
             EXPECT_NEAR(angmom(a, b, wa, wb), l0, 1e-11);
         } else {
@@ -110,14 +118,21 @@ void check_rough(double alpha, double beta, double q1, double q2) {
         }
         const double mu = m1 * m2 / (m1 + m2);
         const double mu_t = 1.0 / (1 / m1 + 1 / m2 + 1 / (q1 * m1) + 1 / (q2 * m2));
-        EXPECT_NEAR(energy(a, b, wa, wb) - e0, collision_energy_change(mu, mu_t, gn * gn, gt.squaredNorm(), alpha, beta),
+        EXPECT_NEAR(energy(a, b, wa, wb) - e0,
+                    collision_energy_change(mu, mu_t, gn * gn, gt.squaredNorm(), alpha, beta),
                     1e-11 * (1 + e0));
     }
 }
 
-TEST(RoughCollision, DisksSatisfyAppendixARules) { check_rough<2>(0.8, 0.3, 0.5, 0.5); }
-TEST(RoughCollision, SpheresSatisfyAppendixARules) { check_rough<3>(0.8, -0.5, 0.4, 0.4); }
-TEST(RoughCollision, UnequalInertiaFactorsSatisfyTheSameRules) { check_rough<3>(0.9, 0.5, 0.3, 0.66); }
+TEST(RoughCollision, DisksSatisfyAppendixARules) {
+    check_rough<2>(0.8, 0.3, 0.5, 0.5);
+}
+TEST(RoughCollision, SpheresSatisfyAppendixARules) {
+    check_rough<3>(0.8, -0.5, 0.4, 0.4);
+}
+TEST(RoughCollision, UnequalInertiaFactorsSatisfyTheSameRules) {
+    check_rough<3>(0.9, 0.5, 0.3, 0.66);
+}
 TEST(RoughCollision, BetaMinusOneIsTheSmoothRule) {
     Vec<3> v1(0.3, -1.2, 0.5), v2(-0.4, 0.9, 0.1), n = Vec<3>(1, 2, -0.5).normalized();
     if ((v1 - v2).dot(n) > 0) n = -n;

@@ -15,8 +15,8 @@ namespace gran::testing {
 inline std::filesystem::path temp_dir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     auto dir = std::filesystem::temp_directory_path() /
-               (std::string("gran_test_") + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" +
-                info->name());
+               (std::string("gran_test_") + std::to_string(::getpid()) + "_" +
+                info->test_suite_name() + "_" + info->name());
     std::filesystem::create_directories(dir);
     return dir;
 }
@@ -29,7 +29,11 @@ inline YAML::Node run_yaml(const std::string& yaml, const std::string& tag = "ru
     return run_scene(scene, opt).summary;
 }
 
-inline double value(const YAML::Node& n) { return n["value"].as<double>(); }
-inline double error(const YAML::Node& n) { return n["error"].as<double>(); }
+inline double value(const YAML::Node& n) {
+    return n["value"].as<double>();
+}
+inline double error(const YAML::Node& n) {
+    return n["error"].as<double>();
+}
 
 }  // namespace gran::testing
