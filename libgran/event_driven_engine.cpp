@@ -36,6 +36,8 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     ev_time_.assign(n, kInf);
     ev_partner_.assign(n, -1);
     ev_count_.assign(n, 0);
+    coll_time_.assign(n, kInf);
+    coll_partner_.assign(n, -1);
     ev_kind_.assign(n, kNone);
     now_ = 0;
     for (std::size_t i = 0; i < n; ++i) now_ = std::max(now_, p_.t[i]);
@@ -118,60 +120,20 @@ void EventDrivenEngine<D>::cell_remove(std::uint32_t i) {
 }
 
 template <int D>
-void EventDrivenEngine<D>::predict(std::uint32_t i) {
-    // i must be at now_.
-    double best = kInf;
-    std::uint8_t kind = kNone;
-    std::int32_t partner = -1;
-    const Vec<D> ri = p_.r[i];
-    const Vec<D> vi = p_.v[i];
-    const std::uint32_t si = p_.species[i];
-
-    // Cell crossings, or walls on bounded axes.
-    for (int a = 0; a < D; ++a) {
-        const double va = vi[a];
-        if (va == 0.0) continue;
-        double t;
-        int code;
-        std::uint8_t k;
-        if (va > 0) {
-            if (box_.periodic[a] || cc_[i][a] < ncell_[a] - 1) {
-                t = ((cc_[i][a] + 1) * cell_width_[a] - ri[a]) / va;
-                k = kCell;
-            } else {
-                t = (box_.length[a] - 0.5 * diameter_[si] - ri[a]) / va;
-                k = kWall;
-            }
-            code = 2 * a + 1;
-        } else {
-            if (box_.periodic[a] || cc_[i][a] > 0) {
-                t = (cc_[i][a] * cell_width_[a] - ri[a]) / va;
-                k = kCell;
-            } else {
-                t = (0.5 * diameter_[si] - ri[a]) / va;
-                k = kWall;
-            }
-            code = 2 * a;
-        }
-        t = std::max(t, 0.0);
-        if (t < best) {
-            best = t;
-            kind = k;
-            partner = code;
-        }
-    }
-
-    // Collisions with particles in the neighbouring cells.
-    // Neighbour cell ids computed from the cell coordinates (no per-cell table).
+int EventDrivenEngine<D>::neighbour_cells(std::uint32_t i, std::int32_t* out, int layer_axis,
+                                          int layer_dir) const {
+    // Cell ids from the cell coordinates (a per-cell table falls out of cache at N = 1e5).
     std::array<std::array<std::int32_t, 3>, D> ax;
     std::array<int, D> axn;
     std::int32_t stride = 1;
     for (int a = 0; a < D; ++a) {
         int m = 0;
         if (ncell_[a] == 1) {
-            ax[a][m++] = 0;
+            // One cell along this axis: a crossing leaves the neighbourhood unchanged.
+            if (a != layer_axis) ax[a][m++] = 0;
         } else {
             for (int o = -1; o <= 1; ++o) {
+                if (a == layer_axis && o != layer_dir) continue;
                 std::int32_t c = cc_[i][a] + o;
                 if (c < 0 || c >= ncell_[a]) {
                     if (!box_.periodic[a]) continue;
@@ -183,36 +145,116 @@ void EventDrivenEngine<D>::predict(std::uint32_t i) {
         axn[a] = m;
         stride *= ncell_[a];
     }
-    std::int32_t nbc[27];
-    int nnb = 0;
+    int n = 0;
     if constexpr (D == 2) {
-        for (int y = 0; y < axn[1]; ++y)
-            for (int x = 0; x < axn[0]; ++x) nbc[nnb++] = ax[1][y] + ax[0][x];
+        for (int y = 0; y < axn[1]; ++y) {
+            for (int x = 0; x < axn[0]; ++x) out[n++] = ax[1][y] + ax[0][x];
+        }
     } else {
-        for (int z = 0; z < axn[2]; ++z)
-            for (int y = 0; y < axn[1]; ++y)
-                for (int x = 0; x < axn[0]; ++x) nbc[nnb++] = ax[2][z] + ax[1][y] + ax[0][x];
+        for (int z = 0; z < axn[2]; ++z) {
+            for (int y = 0; y < axn[1]; ++y) {
+                for (int x = 0; x < axn[0]; ++x) out[n++] = ax[2][z] + ax[1][y] + ax[0][x];
+            }
+        }
     }
-    const double* sig = &sigma_pair_[si * ns_];
-    for (int k = 0; k < nnb; ++k) {
-        const std::int32_t c = nbc[k];
-        for (std::int32_t j = head_[c]; j >= 0; j = next_[j]) {
+    return n;
+}
+
+template <int D>
+void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells,
+                                      double& best, std::int32_t& partner) const {
+    const Vec<D> ri = p_.r[i];
+    const Vec<D> vi = p_.v[i];
+    const double* sig = &sigma_pair_[p_.species[i] * ns_];
+    for (int k = 0; k < ncells; ++k) {
+        for (std::int32_t j = head_[cells[k]]; j >= 0; j = next_[j]) {
             if (std::uint32_t(j) == i) continue;
             const Vec<D> rj = p_.r[j] + p_.v[j] * (now_ - p_.t[j]);
             const Vec<D> dr = box_.separation(ri, rj);
             const Vec<D> dv = vi - p_.v[j];
-            const double t = pair_collision_time<D>(dr, dv, sig[p_.species[j]]);
+            const double t = pair_collision_time<D>(dr, dv, sig[p_.species[j]], best);
             if (t < best) {
                 best = t;
-                kind = kCollision;
                 partner = j;
             }
         }
     }
+}
+
+template <int D>
+void EventDrivenEngine<D>::predict(std::uint32_t i) {
+    // i must be at now_.
+    std::int32_t cells[27];
+    const int n = neighbour_cells(i, cells);
+    double best = kInf;
+    std::int32_t partner = -1;
+    scan_cells(i, cells, n, best, partner);
+    schedule(i, best, partner);
+}
+
+template <int D>
+void EventDrivenEngine<D>::predict_after_crossing(std::uint32_t i, int axis, int dir) {
+    // The earliest collision with the old neighbourhood is still valid if its partner has not
+    // changed since: particles that did change have re-predicted (and hold any earlier collision
+    // with i themselves). Only the layer of cells that just became adjacent needs a scan.
+    const std::int32_t old = coll_partner_[i];
+    if (old >= 0 && count_[old] != ev_count_[i]) {
+        ++counters_.full_rescans_after_crossing;
+        predict(i);
+        return;
+    }
+    std::int32_t cells[9];
+    const int n = neighbour_cells(i, cells, axis, dir);
+    double best = old >= 0 ? coll_time_[i] - now_ : kInf;
+    std::int32_t partner = old;
+    scan_cells(i, cells, n, best, partner);
+    schedule(i, best, partner);
+}
+
+template <int D>
+void EventDrivenEngine<D>::schedule(std::uint32_t i, double collision, std::int32_t partner) {
+    coll_time_[i] = now_ + collision;
+    coll_partner_[i] = partner;
+    if (partner >= 0) ev_count_[i] = count_[partner];
+    double best = collision;
+    std::uint8_t kind = partner >= 0 ? kCollision : kNone;
+    std::int32_t code_best = partner;
+    const Vec<D>& ri = p_.r[i];
+    const Vec<D>& vi = p_.v[i];
+    const double radius = 0.5 * diameter_[p_.species[i]];
+    // Cell crossings, or walls on bounded axes.
+    for (int a = 0; a < D; ++a) {
+        const double va = vi[a];
+        if (va == 0.0) continue;
+        double t;
+        std::uint8_t k;
+        if (va > 0) {
+            if (box_.periodic[a] || cc_[i][a] < ncell_[a] - 1) {
+                t = ((cc_[i][a] + 1) * cell_width_[a] - ri[a]) / va;
+                k = kCell;
+            } else {
+                t = (box_.length[a] - radius - ri[a]) / va;
+                k = kWall;
+            }
+        } else {
+            if (box_.periodic[a] || cc_[i][a] > 0) {
+                t = (cc_[i][a] * cell_width_[a] - ri[a]) / va;
+                k = kCell;
+            } else {
+                t = (radius - ri[a]) / va;
+                k = kWall;
+            }
+        }
+        t = std::max(t, 0.0);
+        if (t < best) {
+            best = t;
+            kind = k;
+            code_best = 2 * a + (va > 0 ? 1 : 0);
+        }
+    }
     ev_time_[i] = now_ + best;
     ev_kind_[i] = kind;
-    ev_partner_[i] = partner;
-    if (kind == kCollision) ev_count_[i] = count_[partner];
+    ev_partner_[i] = code_best;
 }
 
 template <int D>
@@ -298,7 +340,7 @@ void EventDrivenEngine<D>::cross_cell(std::uint32_t i, int code) {
     }
     cell_insert(i, cell_id(cc_[i]));
     ++counters_.cell_crossings;
-    predict(i);
+    predict_after_crossing(i, a, dir);
     queue_.update(i, ev_time_[i]);
 }
 

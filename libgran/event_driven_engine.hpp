@@ -2,7 +2,9 @@
 // Event-driven molecular dynamics of inelastic hard disks (D = 2) and spheres (D = 3), one
 // templated code path. Design (see docs/architecture.md):
 //  - structure-of-arrays particle state with per-particle clocks (lazy position updates);
-//  - cell list (cells at least one largest diameter wide) with cell-crossing events;
+//  - cell list (cells at least one largest diameter wide) with cell-crossing events; after a
+//    crossing only the newly adjacent layer of cells is scanned (the earlier best collision is
+//    kept);
 //  - one pending event per particle, validated lazily with per-particle collision counters;
 //  - indexed 4-ary heap keyed by particle (O(log N) per event), no allocation per event;
 //  - neighbour cells computed from cell coordinates (a per-cell table falls out of cache at 1e5);
@@ -40,17 +42,22 @@ struct EngineCounters {
     std::uint64_t overlap_collisions =
         0;  // approaching pairs found overlapping (round-off) and collided at once
     std::uint64_t full_reschedules = 0;  // all events recomputed (e.g. after thermostat kicks)
+    std::uint64_t full_rescans_after_crossing = 0;  // crossings whose kept collision went stale
 };
 
 // Collision time of two spheres at separation dr, relative velocity dv, contact distance sigma.
-// Returns 0 for an approaching overlapping pair (round-off) and +inf for receding or missing pairs.
-// Stable root: dt = c / (-b + sqrt(b^2 - dv^2 c)) avoids cancellation.
+// Returns 0 for an approaching overlapping pair (round-off) and +inf for receding or missing pairs,
+// or for pairs that cannot collide before `bound`. Stable root: dt = c / (-b + sqrt(b^2 - dv^2 c))
+// avoids cancellation; since that root is >= c / (-2b), pairs beyond the bound are rejected
+// before the square root (the common case in a neighbour scan).
 template <int D>
-inline double pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sigma) {
+inline double pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sigma,
+                                  double bound = kInf) {
     const double b = dr.dot(dv);
     if (b >= 0.0) return kInf;
     const double c = dr.squaredNorm() - sigma * sigma;
     if (c <= 0.0) return 0.0;
+    if (c > -2.0 * b * bound) return kInf;
     const double disc = b * b - dv.squaredNorm() * c;
     if (disc <= 0.0) return kInf;
     return c / (-b + std::sqrt(disc));
@@ -99,6 +106,12 @@ class EventDrivenEngine {
         p_.t[i] = now_;
     }
     void predict(std::uint32_t i);
+    void predict_after_crossing(std::uint32_t i, int axis, int dir);
+    int neighbour_cells(std::uint32_t i, std::int32_t* out, int layer_axis = -1,
+                        int layer_dir = 0) const;
+    void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
+                    std::int32_t& partner) const;
+    void schedule(std::uint32_t i, double collision, std::int32_t partner);
     void collide(std::uint32_t i, std::uint32_t j);
     void cross_cell(std::uint32_t i, int code);
     void hit_wall(std::uint32_t i, int code);
@@ -124,7 +137,9 @@ class EventDrivenEngine {
     std::vector<double> last_collision_;
     std::vector<double> ev_time_;
     std::vector<std::int32_t> ev_partner_;
-    std::vector<std::uint32_t> ev_count_;
+    std::vector<std::uint32_t> ev_count_;     // collision partner's counter when predicted
+    std::vector<double> coll_time_;           // earliest predicted collision (absolute time)
+    std::vector<std::int32_t> coll_partner_;  // its partner (-1: none), kept across cell crossings
     std::vector<std::uint8_t> ev_kind_;
     EventQueue queue_;
 
