@@ -42,6 +42,10 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     now_ = 0;
     for (std::size_t i = 0; i < n; ++i) now_ = std::max(now_, p_.t[i]);
     build_cells();
+    id_.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) id_[i] = i;
+    sort_every_ = 16 * std::uint64_t(std::max<std::size_t>(n, 64));
+    sort_by_cell();
     queue_.reset(n);
     synchronize();
     for (std::uint32_t i = 0; i < n; ++i) predict(i);
@@ -278,8 +282,8 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
     CollisionRecord<D> rec;
     if (sink_) {
         rec.time = now_;
-        rec.i = i;
-        rec.j = j;
+        rec.i = id_[i];
+        rec.j = id_[j];
         rec.si = si;
         rec.sj = sj;
         rec.n = n;
@@ -372,6 +376,13 @@ typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
         if (interrupt && (++check & 1023u) == 0 && interrupt->load(std::memory_order_relaxed)) {
             return Stop::Interrupted;
         }
+        if (events_since_sort_ >= sort_every_) {
+            // Between events the state is consistent: re-sort, then rebuild the queue.
+            sort_by_cell();
+            events_since_sort_ = 0;
+            queue_.reset(p_.size());
+            queue_.rebuild([this](std::uint32_t k) { return ev_time_[k]; });
+        }
         const double te = queue_.top_time();
         if (te > t_limit) {
             now_ = t_limit;
@@ -381,6 +392,7 @@ typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
         const std::uint32_t i = queue_.top();
         now_ = te;
         ++counters_.events;
+        ++events_since_sort_;
         switch (ev_kind_[i]) {
             case kCollision: {
                 const auto j = static_cast<std::uint32_t>(ev_partner_[i]);
@@ -422,6 +434,59 @@ void EventDrivenEngine<D>::velocities_changed() {
     for (std::uint32_t i = 0; i < p_.size(); ++i) predict(i);
     queue_.rebuild([this](std::uint32_t i) { return ev_time_[i]; });
     ++counters_.full_reschedules;
+}
+
+namespace {
+template <class T>
+void permute(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
+    if (v.empty()) return;
+    std::vector<T> old(std::move(v));
+    v.resize(old.size());
+    for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
+}
+}  // namespace
+
+template <int D>
+void EventDrivenEngine<D>::sort_by_cell() {
+    // Counting sort of particles by cell: neighbours in space become neighbours in memory, so a
+    // cell scan touches few cache lines (the storage stays structure-of-arrays).
+    const std::size_t n = p_.size();
+    const std::size_t ncells = head_.size();
+    std::vector<std::uint32_t> start(ncells + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++start[std::size_t(cell_of_[i]) + 1];
+    for (std::size_t c = 0; c < ncells; ++c) start[c + 1] += start[c];
+    std::vector<std::uint32_t> order(n), inv(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const std::uint32_t k = start[std::size_t(cell_of_[i])]++;
+        order[k] = i;
+        inv[i] = k;
+    }
+    permute(p_.r, order);
+    permute(p_.v, order);
+    permute(p_.t, order);
+    permute(p_.species, order);
+    permute(p_.w, order);
+    permute(id_, order);
+    permute(count_, order);
+    permute(last_collision_, order);
+    permute(ev_time_, order);
+    permute(ev_partner_, order);
+    permute(ev_count_, order);
+    permute(ev_kind_, order);
+    permute(coll_time_, order);
+    permute(coll_partner_, order);
+    permute(cc_, order);
+    permute(cell_of_, order);
+    for (std::size_t k = 0; k < n; ++k) {
+        if (ev_kind_[k] == kCollision)
+            ev_partner_[k] = std::int32_t(inv[std::size_t(ev_partner_[k])]);
+        if (coll_partner_[k] >= 0)
+            coll_partner_[k] = std::int32_t(inv[std::size_t(coll_partner_[k])]);
+    }
+    // Rebuild the cell lists so each list runs in increasing storage order.
+    std::fill(head_.begin(), head_.end(), -1);
+    for (std::size_t k = n; k-- > 0;) cell_insert(std::uint32_t(k), cell_of_[k]);
+    ++counters_.sorts;
 }
 
 template class EventDrivenEngine<2>;

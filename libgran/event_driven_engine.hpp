@@ -43,6 +43,7 @@ struct EngineCounters {
         0;  // approaching pairs found overlapping (round-off) and collided at once
     std::uint64_t full_reschedules = 0;  // all events recomputed (e.g. after thermostat kicks)
     std::uint64_t full_rescans_after_crossing = 0;  // crossings whose kept collision went stale
+    std::uint64_t sorts = 0;                        // re-sorts of the particle storage by cell
 };
 
 // Collision time of two spheres at separation dr, relative velocity dv, contact distance sigma.
@@ -95,6 +96,10 @@ class EventDrivenEngine {
     // velocities_changed() to invalidate and recompute every pending event.
     Particles<D>& particles_for_update() { return p_; }
     void velocities_changed();
+    // Particles are stored in cell order and re-sorted now and then (memory locality), so the
+    // storage index of a particle changes; ids()[k] is the original index (placement order) of the
+    // particle stored at k. Collision records carry original ids.
+    const std::vector<std::uint32_t>& ids() const { return id_; }
 
     void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
 
@@ -151,6 +156,11 @@ class EventDrivenEngine {
 
     std::vector<std::uint64_t> pair_collisions_;
     CollisionSink<D>* sink_ = nullptr;
+
+    void sort_by_cell();
+    std::vector<std::uint32_t> id_;
+    std::uint64_t events_since_sort_ = 0;
+    std::uint64_t sort_every_ = 0;  // events between re-sorts (a few sweeps of N)
 };
 
 extern template class EventDrivenEngine<2>;

@@ -218,10 +218,17 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
                     frame_time.size() < sc.frames) {
                     engine.synchronize();
                     frame_time.push_back(engine.now());
+                    // Frames list particles by their original index (the engine re-sorts storage).
+                    const std::size_t base = frame_pos.size();
+                    frame_pos.resize(base + n * D);
+                    frame_vel.resize(base + n * D);
+                    const auto& ids = engine.ids();
                     for (std::size_t i = 0; i < n; ++i) {
                         for (int a = 0; a < D; ++a) {
-                            frame_pos.push_back(engine.particles().r[i][a]);
-                            frame_vel.push_back(engine.particles().v[i][a]);
+                            frame_pos[base + ids[i] * D + std::size_t(a)] =
+                                engine.particles().r[i][a];
+                            frame_vel[base + ids[i] * D + std::size_t(a)] =
+                                engine.particles().v[i][a];
                         }
                     }
                 }
@@ -329,7 +336,8 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
                 q.write("step", steps);
             }
             std::vector<std::int64_t> spec(n);
-            for (std::size_t i = 0; i < n; ++i) spec[i] = engine.particles().species[i];
+            for (std::size_t i = 0; i < n; ++i)
+                spec[engine.ids()[i]] = engine.particles().species[i];
             pg.write("species", spec);
         }
 
