@@ -166,23 +166,45 @@ int EventDrivenEngine<D>::neighbour_cells(std::uint32_t i, std::int32_t* out, in
 
 template <int D>
 void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells,
-                                      double& best, std::int32_t& partner) const {
-    const Vec<D> ri = p_.r[i];
-    const Vec<D> vi = p_.v[i];
-    const double* sig = &sigma_pair_[p_.species[i] * ns_];
-    for (int k = 0; k < ncells; ++k) {
-        for (std::int32_t j = head_[cells[k]]; j >= 0; j = next_[j]) {
-            if (std::uint32_t(j) == i) continue;
-            const Vec<D> rj = p_.r[j] + p_.v[j] * (now_ - p_.t[j]);
-            const Vec<D> dr = box_.separation(ri, rj);
-            const Vec<D> dv = vi - p_.v[j];
-            const double t = pair_collision_time<D>(dr, dv, sig[p_.species[j]], best);
-            if (t < best) {
-                best = t;
-                partner = j;
+                                      double& best_out, std::int32_t& partner_out) const {
+    // Locals (not the reference arguments or members) in the loop: writes through references
+    // would force the compiler to reload every array pointer after each improvement.
+    const Vec<D>* r = p_.r.data();
+    const Vec<D>* v = p_.v.data();
+    const double* t_local = p_.t.data();
+    const std::uint32_t* species = p_.species.data();
+    const std::int32_t* head = head_.data();
+    const std::int32_t* next = next_.data();
+    const double now = now_;
+    const Vec<D> ri = r[i];
+    const Vec<D> vi = v[i];
+    const double* sig = &sigma_pair_[species[i] * ns_];
+    double best = best_out;
+    std::int32_t partner = partner_out;
+    // One species: the contact distance is a constant and the species array is not read.
+    auto scan = [&](auto contact) {
+        for (int k = 0; k < ncells; ++k) {
+            for (std::int32_t j = head[cells[k]]; j >= 0; j = next[j]) {
+                if (std::uint32_t(j) == i) continue;
+                const Vec<D> rj = r[j] + v[j] * (now - t_local[j]);
+                const Vec<D> dr = box_.separation(ri, rj);
+                const Vec<D> dv = vi - v[j];
+                const double t = pair_collision_time<D>(dr, dv, contact(j), best);
+                if (t < best) {
+                    best = t;
+                    partner = j;
+                }
             }
         }
+    };
+    if (ns_ == 1) {
+        const double s0 = sig[0];
+        scan([s0](std::int32_t) { return s0; });
+    } else {
+        scan([sig, species](std::int32_t j) { return sig[species[j]]; });
     }
+    best_out = best;
+    partner_out = partner;
 }
 
 template <int D>
