@@ -102,11 +102,20 @@ class Temperatures final : public Observable<D> {
                 gs.write("series/T_rot", q.t_rot.values());
             }
             if (q.v2.size() > 0) {
-                const double k = double(D) / (D + 2.0);
-                const Estimate a2 = jackknife(
-                    {q.v4.values(), q.v2.values()},
-                    [k](std::span<const double> m) { return k * m[0] / (m[1] * m[1]) - 1.0; });
+                const double k_factor = double(D) / (D + 2.0);
+                const Estimate a2 = jackknife({q.v4.values(), q.v2.values()},
+                                              [k_factor](std::span<const double> m) {
+                                                  return k_factor * m[0] / (m[1] * m[1]) - 1.0;
+                                              });
                 write_estimate(gs, "sonine_a2", a2, "", ss);
+                // Instantaneous a2 of each sample: scale-free, so usable in cooling states where
+                // time averages of moments mix temperatures.
+                std::vector<double> inst(q.v2.size());
+                for (std::size_t k = 0; k < inst.size(); ++k) {
+                    inst[k] =
+                        k_factor * q.v4.values()[k] / (q.v2.values()[k] * q.v2.values()[k]) - 1.0;
+                }
+                gs.write("series/sonine_a2", inst);
             }
             summary["species"][name] = ss;
             if (s == ref_) continue;
