@@ -46,6 +46,19 @@ inline void write_estimate(h5::Group& g, const std::string& name, const Estimate
     summary[name] = s;
 }
 
+// Mass-weighted mean velocity: temperatures are defined from velocities relative to it.
+template <int D>
+Vec<D> centre_of_mass_velocity(const Particles<D>& p, const SpeciesTable& table) {
+    Vec<D> momentum = Vec<D>::Zero();
+    double mass = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const double m = table.species[p.species[i]].mass;
+        momentum += m * p.v[i];
+        mass += m;
+    }
+    return momentum / mass;
+}
+
 inline const char* component_name(int a) {
     return a == 0 ? "x" : (a == 1 ? "y" : "z");
 }

@@ -30,14 +30,7 @@ class Temperatures final : public Observable<D> {
         if (!ctx.measuring) return;
         const auto& p = ctx.engine.particles();
         const std::size_t ns = table_.size();
-        Vec<D> mom = Vec<D>::Zero();
-        double mass = 0;
-        for (std::size_t i = 0; i < p.size(); ++i) {
-            const double m = table_.species[p.species[i]].mass;
-            mom += m * p.v[i];
-            mass += m;
-        }
-        const Vec<D> u = mom / mass;
+        const Vec<D> u = centre_of_mass_velocity<D>(p, table_);
         std::vector<Vec<D>> sum2(ns, Vec<D>::Zero());
         std::vector<double> sum4(ns, 0), sumr(ns, 0), sumv2(ns, 0);
         std::vector<std::size_t> count(ns, 0);

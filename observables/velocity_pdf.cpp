@@ -74,14 +74,7 @@ class VelocityPdf final : public Observable<D> {
         const std::size_t block = std::min(
             nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
         ++samples_;
-        Vec<D> mom = Vec<D>::Zero();
-        double mass = 0;
-        for (std::size_t i = 0; i < p.size(); ++i) {
-            const double m = table_.species[p.species[i]].mass;
-            mom += m * p.v[i];
-            mass += m;
-        }
-        const Vec<D> u = mom / mass;
+        const Vec<D> u = centre_of_mass_velocity<D>(p, table_);
         // Instantaneous per-species, per-component variance for rescaling.
         std::vector<Vec<D>> var(ns, Vec<D>::Zero());
         std::vector<double> cnt(ns, 0);
