@@ -1,6 +1,8 @@
 // Scene files: defaults, resolution and reproducibility of the resolved scene.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "libgran/h5.hpp"
 #include "tests/support/run_scene.hpp"
 
@@ -75,6 +77,57 @@ TEST(Scene, ErrorsNameFileLineColumnAndKey) {
         EXPECT_NE(msg.find("species[0].mass"), std::string::npos) << msg;
         EXPECT_NE(msg.find("> 0"), std::string::npos) << msg;
     }
+}
+
+}  // namespace
+}  // namespace gran
+
+namespace gran {
+namespace {
+
+// Frames: H5MD time series {step, time, value} of shape (frames, N, D), a box with dimension and
+// boundary attributes, and particles in their original order although the engine re-sorts its
+// storage (a permuted order would show jumps of half a box between consecutive frames).
+TEST(Results, TrajectoryFramesFollowH5mdLayoutWithOriginalParticleOrder) {
+    const char* scene = R"(
+dimension: 3
+seed: 4
+species: [{name: a, count: 100}]
+interactions: {alpha: 1}
+box: {packing_fraction: 0.1, periodic: [true, true, false]}
+initial: {placement: lattice}
+run: {measurement: 60, sample_interval: 0.5}
+output: {frames: 120}
+)";
+    testing::run_yaml(scene, "frames");
+    auto file = h5::File::open_read((testing::temp_dir() / "frames.h5").string());
+    auto g = file.root().group("particles/all");
+    const auto shape = g.shape("position/value");
+    ASSERT_EQ(shape.size(), 3u);
+    EXPECT_EQ(shape[0], 120u);
+    EXPECT_EQ(shape[1], 100u);
+    EXPECT_EQ(shape[2], 3u);
+    EXPECT_EQ(g.read_doubles("position/time").size(), 120u);
+    EXPECT_EQ(g.read_int64s("position/step").size(), 120u);
+    auto box = g.group("box");
+    EXPECT_EQ(box.read_attr_double("dimension"), 3.0);
+    const auto edges = box.read_doubles("edges");
+    const auto x = g.read_doubles("position/value");
+    double worst_mean = 0;
+    for (std::size_t f = 0; f + 1 < shape[0]; ++f) {
+        double sum = 0;
+        for (std::size_t i = 0; i < 100; ++i) {
+            double d2 = 0;
+            for (std::size_t a = 0; a < 3; ++a) {
+                double d = x[((f + 1) * 100 + i) * 3 + a] - x[(f * 100 + i) * 3 + a];
+                if (a < 2) d -= edges[a] * std::round(d / edges[a]);
+                d2 += d * d;
+            }
+            sum += std::sqrt(d2);
+        }
+        worst_mean = std::max(worst_mean, sum / 100);
+    }
+    EXPECT_LT(worst_mean, 1.0) << "particles change identity between frames";
 }
 
 }  // namespace
