@@ -86,10 +86,21 @@ void EventDrivenEngine<D>::build_cells() {
     }
     for (int a = 0; a < D; ++a) cell_width_[a] = box_.length[a] / ncell_[a];
 
-    head_.assign(std::size_t(total), -1);
+    slots_ = double(p_.size()) >= 0.25 * double(total);
+    // At most 4 equal disks (8 spheres) have centres in a cell one diameter wide; smaller species
+    // may need more, and grow_cells() doubles the capacity then.
+    cell_capacity_ = D == 2 ? 4 : 8;
+    if (slots_) {
+        cell_count_.assign(std::size_t(total), 0);
+        cell_ids_.assign(std::size_t(total) * std::size_t(cell_capacity_), 0);
+    } else {
+        head_.assign(std::size_t(total), -1);
+    }
+    gather_.assign(p_.size() + 28 * std::size_t(cell_capacity_), 0);
     const std::size_t n = p_.size();
     cc_.assign(n, {});
     cell_of_.assign(n, -1);
+    slot_.assign(n, 0);
     next_.assign(n, -1);
     prev_.assign(n, -1);
     for (std::uint32_t i = 0; i < n; ++i) {
@@ -106,21 +117,50 @@ void EventDrivenEngine<D>::build_cells() {
 template <int D>
 void EventDrivenEngine<D>::cell_insert(std::uint32_t i, std::int32_t c) {
     cell_of_[i] = c;
-    prev_[i] = -1;
-    next_[i] = head_[c];
-    if (head_[c] >= 0) prev_[head_[c]] = static_cast<std::int32_t>(i);
-    head_[c] = static_cast<std::int32_t>(i);
+    if (!slots_) {
+        prev_[i] = -1;
+        next_[i] = head_[c];
+        if (head_[c] >= 0) prev_[head_[c]] = static_cast<std::int32_t>(i);
+        head_[c] = static_cast<std::int32_t>(i);
+        return;
+    }
+    if (cell_count_[c] == cell_capacity_) grow_cells();
+    const std::int32_t k = cell_count_[c]++;
+    slot_[i] = k;
+    cell_ids_[std::size_t(c) * cell_capacity_ + k] = i;
+}
+
+template <int D>
+void EventDrivenEngine<D>::grow_cells() {
+    const std::int32_t cap = 2 * cell_capacity_;
+    std::vector<std::uint32_t> ids(cell_count_.size() * std::size_t(cap), 0);
+    for (std::size_t c = 0; c < cell_count_.size(); ++c) {
+        std::copy_n(&cell_ids_[c * cell_capacity_], cell_count_[c], &ids[c * cap]);
+    }
+    cell_ids_.swap(ids);
+    cell_capacity_ = cap;
+    gather_.assign(p_.size() + 28 * std::size_t(cap), 0);
 }
 
 template <int D>
 void EventDrivenEngine<D>::cell_remove(std::uint32_t i) {
     const std::int32_t c = cell_of_[i];
-    if (prev_[i] >= 0) {
-        next_[prev_[i]] = next_[i];
-    } else {
-        head_[c] = next_[i];
+    if (!slots_) {
+        if (prev_[i] >= 0) {
+            next_[prev_[i]] = next_[i];
+        } else {
+            head_[c] = next_[i];
+        }
+        if (next_[i] >= 0) prev_[next_[i]] = prev_[i];
+        return;
     }
-    if (next_[i] >= 0) prev_[next_[i]] = prev_[i];
+    std::uint32_t* cell = &cell_ids_[std::size_t(c) * cell_capacity_];
+    const std::int32_t last = --cell_count_[c];
+    const std::int32_t k = slot_[i];
+    if (k != last) {
+        cell[k] = cell[last];
+        slot_[cell[k]] = k;
+    }
 }
 
 template <int D>
@@ -173,8 +213,6 @@ void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells
     const Vec<D>* v = p_.v.data();
     const double* t_local = p_.t.data();
     const std::uint32_t* species = p_.species.data();
-    const std::int32_t* head = head_.data();
-    const std::int32_t* next = next_.data();
     const double now = now_;
     const Vec<D> ri = r[i];
     const Vec<D> vi = v[i];
@@ -182,17 +220,34 @@ void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells
     double best = best_out;
     std::int32_t partner = partner_out;
     // One species: the contact distance is a constant and the species array is not read.
-    auto scan = [&](auto contact) {
+    // Gather the candidates (see the cell layouts in the header).
+    std::uint32_t* buf = gather_.data();
+    std::size_t n = 0;
+    if (slots_) {
+        const std::size_t cap = std::size_t(cell_capacity_);
         for (int k = 0; k < ncells; ++k) {
-            for (std::int32_t j = head[cells[k]]; j >= 0; j = next[j]) {
-                if (std::uint32_t(j) == i) continue;
+            const std::size_t c = std::size_t(cells[k]);
+            std::copy_n(&cell_ids_[c * cap], cap, buf + n);
+            n += std::size_t(cell_count_[c]);
+        }
+    } else {
+        for (int k = 0; k < ncells; ++k) {
+            for (std::int32_t j = head_[cells[k]]; j >= 0; j = next_[j])
+                buf[n++] = std::uint32_t(j);
+        }
+    }
+    auto scan = [&](auto contact) {
+        for (std::size_t m = 0; m < n; ++m) {
+            const std::uint32_t j = buf[m];
+            {
+                if (j == i) continue;
                 const Vec<D> rj = r[j] + v[j] * (now - t_local[j]);
                 const Vec<D> dr = box_.separation(ri, rj);
                 const Vec<D> dv = vi - v[j];
                 const double t = pair_collision_time<D>(dr, dv, contact(j), best);
                 if (t < best) {
                     best = t;
-                    partner = j;
+                    partner = std::int32_t(j);
                 }
             }
         }
@@ -473,7 +528,7 @@ void EventDrivenEngine<D>::sort_by_cell() {
     // Counting sort of particles by cell: neighbours in space become neighbours in memory, so a
     // cell scan touches few cache lines (the storage stays structure-of-arrays).
     const std::size_t n = p_.size();
-    const std::size_t ncells = head_.size();
+    const std::size_t ncells = slots_ ? cell_count_.size() : head_.size();
     std::vector<std::uint32_t> start(ncells + 1, 0);
     for (std::size_t i = 0; i < n; ++i) ++start[std::size_t(cell_of_[i]) + 1];
     for (std::size_t c = 0; c < ncells; ++c) start[c + 1] += start[c];
@@ -506,8 +561,9 @@ void EventDrivenEngine<D>::sort_by_cell() {
             coll_partner_[k] = std::int32_t(inv[std::size_t(coll_partner_[k])]);
     }
     // Rebuild the cell lists so each list runs in increasing storage order.
+    std::fill(cell_count_.begin(), cell_count_.end(), 0);
     std::fill(head_.begin(), head_.end(), -1);
-    for (std::size_t k = n; k-- > 0;) cell_insert(std::uint32_t(k), cell_of_[k]);
+    for (std::size_t k = 0; k < n; ++k) cell_insert(std::uint32_t(k), cell_of_[k]);
     ++counters_.sorts;
 }
 

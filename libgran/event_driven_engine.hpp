@@ -152,7 +152,20 @@ class EventDrivenEngine {
     std::array<std::int32_t, D> ncell_{};
     Vec<D> cell_width_;
     std::vector<std::array<std::int32_t, D>> cc_;
-    std::vector<std::int32_t> cell_of_, next_, prev_, head_;
+    // Cell contents, two layouts chosen by occupancy in build_cells():
+    //  - dense (>= 0.25 particles per cell): fixed-capacity slots of ids plus a count per cell. A
+    //    scan gathers the ids of all neighbouring cells without branches (whole slots are copied,
+    //    the write position advances by the count), so the unpredictable "how many particles in
+    //    this cell" branch is not paid per cell (+18% at phi 0.2-0.3 in 3D);
+    //  - dilute: doubly linked lists (a few bytes per mostly empty cell; slots cost -30 to -45% at
+    //    N = 1e5, phi = 0.1, through cache misses).
+    void grow_cells();
+    bool slots_ = false;
+    std::vector<std::int32_t> cell_of_, slot_, cell_count_;
+    std::vector<std::uint32_t> cell_ids_;
+    std::int32_t cell_capacity_ = 0;
+    std::vector<std::int32_t> next_, prev_, head_;
+    mutable std::vector<std::uint32_t> gather_;  // candidates of one scan
 
     std::vector<std::uint64_t> pair_collisions_;
     CollisionSink<D>* sink_ = nullptr;
