@@ -111,6 +111,34 @@ TEST(EventDrivenEngine, PerfectlyRoughSpheresConserveEnergy) {
     check_elastic_conservation<3>(2, true, 200000, 1.0, 0.4);
 }
 
+// Size ratio 4 at high packing: many small particles share a cell one large diameter wide, so the
+// dense cell layout must grow its capacity; energy is still conserved and nothing overlaps.
+TEST(EventDrivenEngine, SizeRatioFourDenseMixtureConservesEnergyAndNeverOverlaps) {
+    SpeciesTable t;
+    t.species.push_back(Species{"big", 4.0, 1.0, 0.4, 100});
+    t.species.push_back(Species{"small", 0.1, 0.25, 0.4, 3000});
+    PairCoefficients c;
+    t.pairs.assign(4, c);
+    const auto box = cube_for<3>(t, 0.35, true);
+    Rng rng = make_rng(8, Stream::Placement);
+    auto p = place_random<3>(box, t, rng);
+    maxwellian_velocities<3>(p, t, 1.0, rng);
+    const double e0 = kinetic_energy<3>(p, t);
+    EventDrivenEngine<3> engine(box, t, p, EngineSettings{});
+    engine.advance(kInf, 300000);
+    engine.synchronize();
+    EXPECT_NEAR(kinetic_energy<3>(engine.particles(), t) / e0, 1.0, 1e-10);
+    const auto& q = engine.particles();
+    double worst = 1;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+        for (std::size_t j = i + 1; j < q.size(); ++j) {
+            const double sig = 0.5 * (t.species[q.species[i]].diameter + t.species[q.species[j]].diameter);
+            worst = std::min(worst, box.separation(q.r[i], q.r[j]).norm() / sig);
+        }
+    }
+    EXPECT_GT(worst, 1 - 1e-9);
+}
+
 TEST(PairCollisionTime, ApproachingOverlappingPairCollidesNow) {
     const Vec<2> dr(0.999, 0.0), dv(-1.0, 0.0);
     EXPECT_EQ(pair_collision_time<2>(dr, dv, 1.0), 0.0);
