@@ -187,6 +187,9 @@ def plot_temperatures(ax, f):
         ax.set_yscale("log")
         if time.min() > 0 and spans_decades(time):
             ax.set_xscale("log")
+    else:  # a steady state: leave room above the noisy series for the legend
+        low, high = ax.get_ylim()
+        ax.set_ylim(low, high + 0.1 * len(curves) * (high - low))
     ax.set_xlabel("time")
     ax.set_ylabel("temperature T")
     ax.set_title("Temperatures during the measurement")
