@@ -14,6 +14,8 @@ template <int D>
 class Driver {
   public:
     virtual ~Driver() = default;
+    // Called once the engine exists, before the run (e.g. to install wall rules).
+    virtual void attach(EventDrivenEngine<D>& /*engine*/) {}
     // Time of the next global event of this driver (+inf: none).
     virtual double next_time() const { return kInf; }
     // Called with the engine synchronised at next_time(); must call engine.velocities_changed()

@@ -75,9 +75,9 @@ class StochasticThermostat final : public Driver<D> {
         summary["injected_energy"] = injected_;
     }
 
-      // 1/8 of the Enskog mean free time of the mixture at the initial temperature: close enough to
-    // white noise for the tested temperature ratios (docs/physics.md), and ~4 rescheduling passes per
-    // collision per particle.
+    // 1/8 of the Enskog mean free time of the mixture at the initial temperature: close enough to
+    // white noise for the tested temperature ratios (docs/physics.md), and ~4 rescheduling passes
+    // per collision per particle.
     static double default_interval(const SceneInfo& info) {
         const SpeciesTable& t = *info.species;
         double volume = 1;
@@ -96,15 +96,16 @@ class StochasticThermostat final : public Driver<D> {
         for (std::size_t a = 0; a < t.size(); ++a) {
             for (std::size_t b = 0; b < t.size(); ++b) {
                 const double sab = 0.5 * (sigma[a] + sigma[b]);
-                omega += x[a] * theory::enskog_pair_collision_frequency(D, double(t.species[b].count) / volume, sab,
-                                                                        chi[a * t.size() + b], T, t.species[a].mass,
-                                                                        T, t.species[b].mass);
+                omega +=
+                    x[a] * theory::enskog_pair_collision_frequency(
+                               D, double(t.species[b].count) / volume, sab, chi[a * t.size() + b],
+                               T, t.species[a].mass, T, t.species[b].mass);
             }
         }
         return 1.0 / (8.0 * omega);
     }
 
-private:
+  private:
     static double mass_of(const EventDrivenEngine<D>& engine, std::size_t i) {
         return engine.species_mass(engine.particles().species[i]);
     }

@@ -429,13 +429,30 @@ template <int D>
 void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
     move(i);
     const int a = code / 2;
-    // Static elastic wall: the normal velocity is reversed (only if still moving into the wall).
     const bool upper = code % 2;
-    if ((upper && p_.v[i][a] > 0) || (!upper && p_.v[i][a] < 0)) p_.v[i][a] = -p_.v[i][a];
+    // Only a particle still moving into the wall is reflected.
+    if ((upper && p_.v[i][a] > 0) || (!upper && p_.v[i][a] < 0)) {
+        const WallSlot& w = walls_[std::size_t(code)];
+        if (w.rule) {
+            w.rule(p_.v[i], a, upper ? -1.0 : 1.0, w.params, *w.rng, mass_[p_.species[i]]);
+        } else {
+            p_.v[i][a] = -p_.v[i][a];  // static elastic wall
+        }
+    }
     ++count_[i];
     ++counters_.wall_hits;
+    ++wall_hit_count_[std::size_t(code)];
     predict(i);
     queue_.update(i, ev_time_[i]);
+}
+
+template <int D>
+void EventDrivenEngine<D>::set_wall(int axis, int side, WallRule rule, const WallParams& params,
+                                    Rng* rng) {
+    if (axis < 0 || axis >= D || box_.periodic[std::size_t(axis)]) {
+        throw std::invalid_argument("set_wall: walls need a bounded (non-periodic) axis");
+    }
+    walls_[std::size_t(2 * axis + side)] = WallSlot{rule, params, rng};
 }
 
 template <int D>

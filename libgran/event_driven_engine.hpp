@@ -24,6 +24,7 @@
 #include "libgran/particles.hpp"
 #include "species/collision_rules.hpp"
 #include "species/species.hpp"
+#include "species/wall_rules.hpp"
 
 namespace gran {
 
@@ -103,6 +104,17 @@ class EventDrivenEngine {
 
     void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
 
+    // Particle-wall rule of one wall of a bounded axis (side 0: lower, 1: upper); the default is a
+    // static elastic wall. Wall drivers install theirs; `rng` must outlive the engine.
+    using WallRule = void (*)(Vec<D>& v, int axis, double inward, const WallParams& params,
+                              Rng& rng, double mass);
+    void set_wall(int axis, int side, WallRule rule, const WallParams& params, Rng* rng);
+    bool wall_is_set(int axis, int side) const {
+        return walls_[std::size_t(2 * axis + side)].rule != nullptr;
+    }
+    // Hits per wall (index 2 * axis + side).
+    const std::array<std::uint64_t, 2 * D>& wall_hits() const { return wall_hit_count_; }
+
   private:
     enum Kind : std::uint8_t { kNone, kCollision, kCell, kWall };
 
@@ -169,6 +181,14 @@ class EventDrivenEngine {
 
     std::vector<std::uint64_t> pair_collisions_;
     CollisionSink<D>* sink_ = nullptr;
+
+    struct WallSlot {
+        WallRule rule = nullptr;
+        WallParams params;
+        Rng* rng = nullptr;
+    };
+    std::array<WallSlot, 2 * D> walls_{};
+    std::array<std::uint64_t, 2 * D> wall_hit_count_{};
 
     void sort_by_cell();
     std::vector<std::uint32_t> id_;

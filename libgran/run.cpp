@@ -139,6 +139,7 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
 
     const double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;
     EventDrivenEngine<D> engine(box, sc.species, initial_particles<D>(sc), sc.engine);
+    for (auto& d : drivers) d->attach(engine);
     CollisionFanout<D> fanout;
     for (auto& o : observables) {
         if (auto* s = o->collision_sink()) fanout.sinks.push_back(s);

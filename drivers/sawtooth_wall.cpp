@@ -1,0 +1,32 @@
+// Sawtooth vibrating wall (Barrat & Trizac 2002): every particle meets the wall moving into the gas
+// with speed v0 at its fixed position; v_n' = 2 v0 - v_n at the lower wall (e = 1), with an
+// optional wall restitution e: v_n' - u = -e (v_n - u).
+#include "drivers/wall_driver.hpp"
+
+namespace gran {
+namespace {
+
+template <int D>
+class SawtoothWall final : public WallDriver<D> {
+  public:
+    SawtoothWall(const Params& p, const SceneInfo& info)
+        : WallDriver<D>(p, info, &sawtooth_wall_rule<D>, make(p), "sawtooth") {}
+
+  private:
+    static WallParams make(const Params& p) {
+        WallParams w;
+        w.velocity = p.real("velocity");
+        w.restitution = p.real("restitution");
+        return w;
+    }
+};
+
+const bool registered = register_plugin<Driver, SawtoothWall>(
+    "sawtooth_wall",
+    "sawtooth vibrating wall: particles meet the wall moving into the gas at speed v0",
+    wall_schema(
+        {real("velocity", "", "velocity", "wall speed v0 (directed into the gas)", 0, 1e308, true),
+         real("restitution", "1", "", "particle-wall normal restitution", 0, 1, true, false)}));
+
+}  // namespace
+}  // namespace gran
