@@ -1,0 +1,241 @@
+// Profiles along one axis (slabs): per species number density, packing fraction, temperatures T,
+// T_a per component and T_rot, the anisotropy A = (T_y - T_x) / (2T) of the mixture (for axis y;
+// generally (T_axis - mean of the others) / (2T)), and temperature ratios gamma(y) = T_s / T_ref
+// per component (Barrat & Trizac 2002, Figs. 1-3, 13-16); plus the same quantities in a central
+// window
+// ("middle of the system", Tables I and II). Temperatures are m <v_a^2> over the particles in a
+// slab (no mean flow in these steady states). Error bars: jackknife over `blocks` consecutive
+// blocks of samples, so ratios of sums are estimated without bias.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "observables/observable.hpp"
+
+namespace gran {
+namespace {
+
+template <int D>
+class Profiles final : public Observable<D> {
+  public:
+    Profiles(const Params& p, const SceneInfo& info)
+        : table_(*info.species),
+          bins_(static_cast<std::size_t>(p.integer("bins"))),
+          nblocks_(static_cast<std::size_t>(p.integer("blocks"))),
+          window_(p.real("middle_window")) {
+        const std::string axis = p.str("axis");
+        axis_ = axis == "x" ? 0 : (axis == "y" ? 1 : 2);
+        if (axis_ >= D) p.fail("axis", fmt::format("axis {} does not exist in {}D", axis, D));
+        length_ = info.box_length[std::size_t(axis_)];
+        cross_section_ = 1;
+        for (int a = 0; a < D; ++a) {
+            if (a != axis_) cross_section_ *= info.box_length[std::size_t(a)];
+        }
+        const std::string ref =
+            p.has("reference_species") ? p.str("reference_species") : table_.species[0].name;
+        ref_ = table_.index_of(ref);
+        if (ref_ == table_.size()) p.fail("reference_species", "unknown species '" + ref + "'");
+        rotating_ = table_.rough();
+        // Per block, per (bin + 1 middle row), per species: count, sum m v_a^2 (D), sum I w^2.
+        stride_ = 2 + D;
+        sums_.assign(nblocks_ * (bins_ + 1) * table_.size() * stride_, 0.0);
+        samples_in_block_.assign(nblocks_, 0);
+    }
+
+    void sample(const SampleContext<D>& ctx) override {
+        if (!ctx.measuring) return;
+        const auto& p = ctx.engine.particles();
+        const std::size_t block = std::min(
+            nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
+        ++samples_;
+        ++samples_in_block_[block];
+        const double lo = 0.5 * (1 - window_) * length_, hi = 0.5 * (1 + window_) * length_;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            double y = p.position_at(i, ctx.time)[axis_];
+            y -= length_ * std::floor(y / length_);  // periodic images (bounded axes stay inside)
+            const auto bin =
+                std::min(bins_ - 1, static_cast<std::size_t>(y / length_ * double(bins_)));
+            const std::uint32_t s = p.species[i];
+            add(block, bin, s, p, i, ctx);
+            if (y >= lo && y < hi) add(block, bins_, s, p, i, ctx);
+        }
+    }
+
+    void write(h5::Group& g, YAML::Node& summary) const override {
+        if (samples_ == 0) return;
+        const std::size_t ns = table_.size();
+        std::vector<double> centres(bins_);
+        for (std::size_t b = 0; b < bins_; ++b)
+            centres[b] = (double(b) + 0.5) * length_ / double(bins_);
+        g.write("position", centres);
+        g.attr_on("position", "unit", "length");
+        g.attr("axis", std::string(component_name(axis_)));
+        g.attr("middle_window", window_);
+        const double slab_volume = cross_section_ * length_ / double(bins_);
+        const double middle_volume = cross_section_ * length_ * window_;
+        const double vd = D == 2 ? std::numbers::pi / 4 : std::numbers::pi / 6;
+        // Each quantity is a function of the (species, row) sums; evaluated on all blocks and on
+        // the leave-one-block-out sums (jackknife).
+        auto profile = [&](const std::string& name, const std::string& unit, auto f) {
+            std::vector<double> val(bins_), err(bins_);
+            for (std::size_t b = 0; b < bins_; ++b) {
+                const Estimate e = jack(b, f, b < bins_ ? slab_volume : middle_volume);
+                val[b] = e.value;
+                err[b] = e.error;
+            }
+            g.write(name, val);
+            g.write(name + "_error", err);
+            if (!unit.empty()) g.attr_on(name, "unit", unit);
+            const Estimate m = jack(bins_, f, middle_volume);
+            write_estimate(g, "middle/" + name, m, unit, summary);
+        };
+        for (std::size_t s = 0; s < ns; ++s) {
+            const std::string sn = table_.species[s].name;
+            const double sig = table_.species[s].diameter;
+            profile(sn + "/number_density", "1/length^" + std::to_string(D),
+                    [s, this](const Acc& a, double vol) {
+                        return a.count(s) / (double(a.samples) * vol);
+                    });
+            profile(sn + "/packing_fraction", "", [s, sig, vd, this](const Acc& a, double vol) {
+                return a.count(s) * vd * std::pow(sig, D) / (double(a.samples) * vol);
+            });
+            profile(sn + "/T", "energy", [s](const Acc& a, double) { return a.temperature(s); });
+            for (int c = 0; c < D; ++c) {
+                profile(sn + "/T_" + component_name(c), "energy",
+                        [s, c](const Acc& a, double) { return a.component(s, c); });
+            }
+            if (rotating_)
+                profile(sn + "/T_rot", "energy",
+                        [s](const Acc& a, double) { return a.rotational(s); });
+            if (s != ref_) {
+                const std::string r = "ratios/" + sn + "_over_" + table_.species[ref_].name;
+                const std::size_t q = ref_;
+                profile(r + "/gamma", "", [s, q](const Acc& a, double) {
+                    return a.temperature(s) / a.temperature(q);
+                });
+                for (int c = 0; c < D; ++c) {
+                    profile(r + "/gamma_" + component_name(c), "", [s, q, c](const Acc& a, double) {
+                        return a.component(s, c) / a.component(q, c);
+                    });
+                }
+                if (rotating_) {
+                    profile(r + "/gamma_rot", "", [s, q](const Acc& a, double) {
+                        return a.rotational(s) / a.rotational(q);
+                    });
+                }
+            }
+        }
+        profile("mixture/T", "energy",
+                [](const Acc& a, double) { return a.mixture_temperature(); });
+        profile("mixture/anisotropy", "",
+                [this](const Acc& a, double) { return a.anisotropy(axis_); });
+    }
+
+  private:
+    // Sums of one row (a bin or the middle window) over a set of blocks.
+    struct Acc {
+        const Profiles* self;
+        std::vector<double> v;  // per species: count, m v_a^2 (D), I w^2
+        std::size_t samples = 0;
+        double count(std::size_t s) const { return v[s * self->stride_]; }
+        double component(std::size_t s, int c) const {
+            return v[s * self->stride_ + 1 + std::size_t(c)] / v[s * self->stride_];
+        }
+        double temperature(std::size_t s) const {
+            double t = 0;
+            for (int c = 0; c < D; ++c) t += component(s, c) / D;
+            return t;
+        }
+        double rotational(std::size_t s) const {
+            return v[s * self->stride_ + 1 + D] / v[s * self->stride_] / (D == 2 ? 1.0 : 3.0);
+        }
+        double mixture_temperature() const {
+            double e = 0, n = 0;
+            for (std::size_t s = 0; s < self->table_.size(); ++s) {
+                for (int c = 0; c < D; ++c) e += v[s * self->stride_ + 1 + std::size_t(c)];
+                n += count(s);
+            }
+            return e / (D * n);
+        }
+        double anisotropy(int axis) const {
+            double along = 0, across = 0, n = 0;
+            for (std::size_t s = 0; s < self->table_.size(); ++s) {
+                for (int c = 0; c < D; ++c) {
+                    (c == axis ? along : across) += v[s * self->stride_ + 1 + std::size_t(c)];
+                }
+                n += count(s);
+            }
+            along /= n;
+            across /= n * (D - 1);
+            const double t = (along + (D - 1) * across) / D;
+            return (along - across) / (2 * t);
+        }
+    };
+
+    void add(std::size_t block, std::size_t row, std::uint32_t s, const Particles<D>& p,
+             std::size_t i, const SampleContext<D>& ctx) {
+        double* a = &sums_[((block * (bins_ + 1) + row) * table_.size() + s) * stride_];
+        const double m = table_.species[s].mass;
+        a[0] += 1;
+        for (int c = 0; c < D; ++c) a[1 + c] += m * p.v[i][c] * p.v[i][c];
+        if (rotating_) a[1 + D] += ctx.engine.species_inertia(s) * ang_squared<D>(p.w[i]);
+    }
+
+    Acc row_sums(std::size_t row, std::size_t skip_block) const {
+        Acc acc{this, std::vector<double>(table_.size() * stride_, 0.0), 0};
+        for (std::size_t b = 0; b < nblocks_; ++b) {
+            if (b == skip_block) continue;
+            const double* a = &sums_[(b * (bins_ + 1) + row) * table_.size() * stride_];
+            for (std::size_t k = 0; k < acc.v.size(); ++k) acc.v[k] += a[k];
+            acc.samples += samples_in_block_[b];
+        }
+        return acc;
+    }
+
+    template <class F>
+    Estimate jack(std::size_t row, const F& f, double volume) const {
+        const double full = f(row_sums(row, nblocks_), volume);
+        std::vector<double> loo;
+        for (std::size_t b = 0; b < nblocks_; ++b) {
+            if (samples_in_block_[b] == 0) continue;
+            loo.push_back(f(row_sums(row, b), volume));
+        }
+        const double nb = double(loo.size());
+        if (nb < 2) return {full, std::nan("")};
+        double mean = 0;
+        for (double x : loo) mean += x / nb;
+        double var = 0;
+        for (double x : loo) var += (x - mean) * (x - mean);
+        return {full, std::sqrt(var * (nb - 1) / nb)};
+    }
+
+    const SpeciesTable& table_;
+    std::size_t bins_, nblocks_;
+    double window_;
+    int axis_ = 1;
+    double length_ = 1, cross_section_ = 1;
+    std::size_t ref_ = 0;
+    bool rotating_ = false;
+    std::size_t stride_ = 0;
+    std::vector<double> sums_;
+    std::vector<std::size_t> samples_in_block_;
+    std::size_t samples_ = 0;
+};
+
+const bool registered = register_plugin<Observable, Profiles>(
+    "profiles",
+    "profiles along an axis (slabs): density, packing fraction, temperatures, anisotropy, "
+    "gamma(y); "
+    "middle-of-the-system values",
+    {choice("axis", "y", {"x", "y", "z"}, "profile direction"),
+     integer("bins", "20", "number of slabs", 1, 100000),
+     real("middle_window", "0.2", "",
+          "width of the central window, as a fraction of the box length", 0, 1, true, false),
+     integer("blocks", "16", "blocks of samples for the jackknife error bars", 2, 1000),
+     optional(text("reference_species", "",
+                   "species whose temperature divides the ratios (default: first)"))});
+
+}  // namespace
+}  // namespace gran
