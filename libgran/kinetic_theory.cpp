@@ -334,4 +334,21 @@ double hcs_temperature_ratio(const BinaryMixture& mix) {
     });
 }
 
+double enskog_pressure(int d, const std::vector<double>& n, const std::vector<double>& T,
+                       const std::vector<double>& m, const std::vector<double>& sigma,
+                       const std::vector<double>& alpha, const std::vector<double>& chi) {
+    const std::size_t ns = n.size();
+    double p = 0;
+    for (std::size_t i = 0; i < ns; ++i) p += n[i] * T[i];
+    const double b = std::pow(2.0, d - 1) * unit_ball_volume(d);
+    for (std::size_t i = 0; i < ns; ++i) {
+        for (std::size_t j = 0; j < ns; ++j) {
+            const double sij = 0.5 * (sigma[i] + sigma[j]);
+            p += b * n[i] * n[j] * std::pow(sij, d) * chi[i * ns + j] * (1.0 + alpha[i * ns + j]) *
+                 (m[j] * T[i] + m[i] * T[j]) / (2.0 * (m[i] + m[j]));
+        }
+    }
+    return p;
+}
+
 }  // namespace gran::theory

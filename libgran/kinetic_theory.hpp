@@ -51,6 +51,17 @@ double contact_value(int d, double phi);
 std::vector<double> contact_values_mixture(int d, double phi, const std::vector<double>& sigma,
                                            const std::vector<double>& x);
 
+// Equation of state of an inelastic hard-sphere mixture (Barrat & Trizac 2002, Eq. (4), derived in
+// their Appendix B from the collisional momentum transfer, Eq. (B8)):
+//   P = sum_i n_i T_i + 2^(d-1) V_d sum_ij n_i n_j sigma_ij^d chi_ij (1 + alpha_ij)
+//                                        (m_j T_i + m_i T_j) / (2 (m_i + m_j))
+// (ordered pairs; V_d the volume of a unit-diameter ball). Monodisperse 2D: P = n T [1 + (1 +
+// alpha) phi chi], Eq. (7). Replacing T_i by a component T_{i,a} gives P_aa (the paper's Fig. 4b).
+// chi is row-major ns x ns (e.g. contact_values_mixture), alpha likewise.
+double enskog_pressure(int d, const std::vector<double>& n, const std::vector<double>& T,
+                       const std::vector<double>& m, const std::vector<double>& sigma,
+                       const std::vector<double>& alpha, const std::vector<double>& chi);
+
 // Enskog collision frequency per particle of a monodisperse gas at number density n
 // (each collision counted once for each of the two partners), Maxwellian at T:
 //   omega = n sigma^(d-1) chi B_1 <|g|>  with s2 = 2 T/m

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <vector>
 
+#include "libgran/kinetic_theory.hpp"
 #include "observables/observable.hpp"
 
 namespace gran {
@@ -131,6 +132,19 @@ class Profiles final : public Observable<D> {
                 [](const Acc& a, double) { return a.mixture_temperature(); });
         profile("mixture/anisotropy", "",
                 [this](const Acc& a, double) { return a.anisotropy(axis_); });
+        // Equation of state from the local densities and temperatures (Eq. (4); Eq. (7) when
+        // monodisperse): the ideal part and with the Enskog collisional part, using the full T
+        // (isotropic P) or the component along the axis (P_aa, the paper's Fig. 4b).
+        const std::string ax = std::string(component_name(axis_));
+        const std::string pu = "energy/length^" + std::to_string(D);
+        profile("eos/P_ideal", pu,
+                [this](const Acc& a, double vol) { return eos(a, vol, -1, false); });
+        profile("eos/P_enskog", pu,
+                [this](const Acc& a, double vol) { return eos(a, vol, -1, true); });
+        profile("eos/P_ideal_" + ax + ax, pu,
+                [this](const Acc& a, double vol) { return eos(a, vol, axis_, false); });
+        profile("eos/P_enskog_" + ax + ax, pu,
+                [this](const Acc& a, double vol) { return eos(a, vol, axis_, true); });
     }
 
   private:
@@ -173,6 +187,33 @@ class Profiles final : public Observable<D> {
             return (along - across) / (2 * t);
         }
     };
+
+    // Pressure from the equation of state in a slab: component < 0 uses the total temperatures.
+    double eos(const Acc& a, double vol, int component, bool enskog) const {
+        const std::size_t ns = table_.size();
+        std::vector<double> n(ns), T(ns), m(ns), sigma(ns), x(ns), alpha(ns * ns, 0.0),
+            chi(ns * ns, 0.0);
+        double n_total = 0, phi = 0;
+        const double vd = theory::unit_ball_volume(D);
+        for (std::size_t s = 0; s < ns; ++s) {
+            n[s] = a.count(s) / (double(a.samples) * vol);
+            T[s] = a.count(s) > 0 ? (component < 0 ? a.temperature(s) : a.component(s, component))
+                                  : 0.0;
+            m[s] = table_.species[s].mass;
+            sigma[s] = table_.species[s].diameter;
+            n_total += n[s];
+            phi += n[s] * vd * std::pow(sigma[s], D);
+        }
+        if (n_total == 0) return 0;
+        for (std::size_t s = 0; s < ns; ++s) x[s] = n[s] / n_total;
+        if (enskog) {
+            chi = theory::contact_values_mixture(D, phi, sigma, x);
+            for (std::size_t i = 0; i < ns; ++i) {
+                for (std::size_t j = 0; j < ns; ++j) alpha[i * ns + j] = table_.pair(i, j).alpha;
+            }
+        }
+        return theory::enskog_pressure(D, n, T, m, sigma, alpha, chi);
+    }
 
     void add(std::size_t block, std::size_t row, std::uint32_t s, const Particles<D>& p,
              std::size_t i, const SampleContext<D>& ctx) {
