@@ -11,6 +11,7 @@ struct CollisionRecord {
     double time = 0;
     std::uint32_t i = 0, j = 0;    // particle indices
     std::uint32_t si = 0, sj = 0;  // species
+    Vec<D> ri;                     // position of i at contact (periodic axes: any image)
     Vec<D> n;                      // unit vector from j to i
     Vec<D> vi, vj, vi_after, vj_after;
     AngVec<D> wi{}, wj{}, wi_after{}, wj_after{};

@@ -364,6 +364,7 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
         rec.si = si;
         rec.sj = sj;
         rec.n = n;
+        rec.ri = p_.r[i];
         rec.vi = p_.v[i];
         rec.vj = p_.v[j];
         if (rough_) {

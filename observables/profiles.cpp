@@ -8,6 +8,7 @@
 // blocks of samples, so ratios of sums are estimated without bias.
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -19,7 +20,7 @@ namespace gran {
 namespace {
 
 template <int D>
-class Profiles final : public Observable<D> {
+class Profiles final : public Observable<D>, public CollisionSink<D> {
   public:
     Profiles(const Params& p, const SceneInfo& info)
         : table_(*info.species),
@@ -43,14 +44,59 @@ class Profiles final : public Observable<D> {
         stride_ = 2 + D;
         sums_.assign(nblocks_ * (bins_ + 1) * table_.size() * stride_, 0.0);
         samples_in_block_.assign(nblocks_, 0);
+        pressure_ = p.boolean("pressure");
+        coll_.assign(nblocks_ * (bins_ + 1) * D, 0.0);
+        block_time_.assign(nblocks_, 0.0);
+    }
+
+    CollisionSink<D>* collision_sink() override { return pressure_ ? this : nullptr; }
+
+    // Collisional (virial) momentum flux, Irving–Kirkwood style: the transfer impulse * sigma *
+    // n_a^2 of the diagonal component a is shared among the slabs crossed by the segment joining
+    // the centres, in proportion to the length inside each (Barrat & Trizac 2002, Eq. (B1)).
+    void on_collision(const CollisionRecord<D>& c) override {
+        if (!started_) return;
+        const double sigma = c.contact_distance;
+        double yi = c.ri[axis_];
+        yi -= length_ * std::floor(yi / length_);
+        const double yj = yi - sigma * c.n[axis_];
+        const double lo = std::min(yi, yj), hi = std::max(yi, yj), span = hi - lo;
+        std::array<double, D> flux;
+        for (int a = 0; a < D; ++a) flux[std::size_t(a)] = c.impulse * sigma * c.n[a] * c.n[a];
+        const double w = length_ / double(bins_);
+        auto deposit = [&](std::size_t row, double fraction) {
+            double* t = &coll_[(current_block_ * (bins_ + 1) + row) * D];
+            for (int a = 0; a < D; ++a) t[a] += flux[std::size_t(a)] * fraction;
+        };
+        auto share = [&](double a, double b) {  // fraction of [lo, hi] inside [a, b]
+            if (span <= 1e-300) return (lo >= a && lo < b) ? 1.0 : 0.0;
+            return std::max(0.0, std::min(hi, b) - std::max(lo, a)) / span;
+        };
+        // The segment may stick out of [0, L) on a periodic axis: visit the images it touches.
+        const long first = static_cast<long>(std::floor(lo / w)),
+                   last = static_cast<long>(std::floor(hi / w));
+        for (long k = first; k <= last; ++k) {
+            const double f = share(double(k) * w, double(k + 1) * w);
+            if (f <= 0) continue;
+            const long wrapped = ((k % long(bins_)) + long(bins_)) % long(bins_);
+            deposit(std::size_t(wrapped), f);
+        }
+        const double mlo = 0.5 * (1 - window_) * length_, mhi = 0.5 * (1 + window_) * length_;
+        const double fm = share(mlo, mhi);
+        if (fm > 0) deposit(bins_, fm);
     }
 
     void sample(const SampleContext<D>& ctx) override {
         if (!ctx.measuring) return;
         const auto& p = ctx.engine.particles();
-        const std::size_t block = std::min(
-            nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
+        const std::size_t expected = std::max<std::size_t>(ctx.expected_samples, 1);
+        const std::size_t block = std::min(nblocks_ - 1, samples_ * nblocks_ / expected);
+        // Collision fluxes since the previous sample belong to this sample's block.
+        if (started_) block_time_[block] += ctx.time - last_time_;
+        started_ = true;
+        last_time_ = ctx.time;
         ++samples_;
+        current_block_ = std::min(nblocks_ - 1, samples_ * nblocks_ / expected);
         ++samples_in_block_[block];
         const double lo = 0.5 * (1 - window_) * length_, hi = 0.5 * (1 + window_) * length_;
         for (std::size_t i = 0; i < p.size(); ++i) {
@@ -145,6 +191,20 @@ class Profiles final : public Observable<D> {
                 [this](const Acc& a, double vol) { return eos(a, vol, axis_, false); });
         profile("eos/P_enskog_" + ax + ax, pu,
                 [this](const Acc& a, double vol) { return eos(a, vol, axis_, true); });
+        if (pressure_) {
+            // Measured pressure tensor (diagonal): kinetic sum m v_a^2 per volume plus the
+            // collisional flux per volume and time.
+            for (int c = 0; c < D; ++c) {
+                const std::string cc = std::string(component_name(c)) + component_name(c);
+                profile("pressure/P_" + cc, pu, [c](const Acc& a, double vol) {
+                    return a.kinetic(c) / (double(a.samples) * vol) +
+                           a.coll[std::size_t(c)] / (a.time * vol);
+                });
+                profile("pressure/P_" + cc + "_collisional", pu, [c](const Acc& a, double vol) {
+                    return a.coll[std::size_t(c)] / (a.time * vol);
+                });
+            }
+        }
     }
 
   private:
@@ -153,6 +213,14 @@ class Profiles final : public Observable<D> {
         const Profiles* self;
         std::vector<double> v;  // per species: count, m v_a^2 (D), I w^2
         std::size_t samples = 0;
+        std::array<double, D> coll{};  // collisional momentum flux sums per diagonal component
+        double time = 0;
+        double kinetic(int c) const {  // sum over species of m v_c^2
+            double k = 0;
+            for (std::size_t s = 0; s < self->table_.size(); ++s)
+                k += v[s * self->stride_ + 1 + std::size_t(c)];
+            return k;
+        }
         double count(std::size_t s) const { return v[s * self->stride_]; }
         double component(std::size_t s, int c) const {
             return v[s * self->stride_ + 1 + std::size_t(c)] / v[s * self->stride_];
@@ -231,6 +299,9 @@ class Profiles final : public Observable<D> {
             const double* a = &sums_[(b * (bins_ + 1) + row) * table_.size() * stride_];
             for (std::size_t k = 0; k < acc.v.size(); ++k) acc.v[k] += a[k];
             acc.samples += samples_in_block_[b];
+            const double* t = &coll_[(b * (bins_ + 1) + row) * D];
+            for (int c = 0; c < D; ++c) acc.coll[std::size_t(c)] += t[c];
+            acc.time += block_time_[b];
         }
         return acc;
     }
@@ -262,6 +333,12 @@ class Profiles final : public Observable<D> {
     std::size_t stride_ = 0;
     std::vector<double> sums_;
     std::vector<std::size_t> samples_in_block_;
+    bool pressure_ = true;
+    std::vector<double> coll_;
+    std::vector<double> block_time_;
+    double last_time_ = 0;
+    bool started_ = false;
+    std::size_t current_block_ = 0;
     std::size_t samples_ = 0;
 };
 
@@ -275,6 +352,9 @@ const bool registered = register_plugin<Observable, Profiles>(
      real("middle_window", "0.2", "",
           "width of the central window, as a fraction of the box length", 0, 1, true, false),
      integer("blocks", "16", "blocks of samples for the jackknife error bars", 2, 1000),
+     boolean(
+         "pressure", "true",
+         "measure the pressure tensor (kinetic + collisional virial); subscribes to collisions"),
      optional(text("reference_species", "",
                    "species whose temperature divides the ratios (default: first)"))});
 
