@@ -5,12 +5,12 @@ JOBS ?= $(shell nproc)
 PY := /usr/bin/python3
 DEB_PACKAGES := cmake g++ ninja-build pkg-config libeigen3-dev libboost-dev libhdf5-dev libfmt-dev \
   libspdlog-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
-  python3-h5py python3-numpy python3-matplotlib
+  python3-h5py python3-numpy python3-matplotlib python3-yaml
 # Warnings are errors in CI (CI=true) and whenever GRAN_WERROR=ON is given.
 GRAN_WERROR ?= $(if $(CI),ON,OFF)
 CMAKE_FLAGS ?=
 
-.PHONY: deps configure build demo test validate bench format sanitize clean
+.PHONY: deps configure build demo test validate bench format sanitize clean reproduce-barrat-trizac-2002
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \
@@ -43,6 +43,11 @@ validate: build
 bench: build
 	@mkdir -p results
 	$(BUILD_DIR)/gran_bench --csv results/bench.csv
+
+# Barrat & Trizac 2002, Tables I-II (12 runs, both cores; completed runs are reused).
+reproduce-barrat-trizac-2002: build
+	$(PY) studies/run_study.py studies/barrat-trizac-2002/tables.yaml -o results/barrat-trizac-2002 --gran $(BUILD_DIR)/gran
+	$(PY) studies/barrat-trizac-2002/compare.py results/barrat-trizac-2002
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
