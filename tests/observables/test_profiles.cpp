@@ -50,6 +50,9 @@ struct TableRow {
     double mass_ratio, a11, a12, a22, beta, gamma, gamma_x, gamma_rot;
 };
 
+// Readable parameter names in test logs.
+void PrintTo(const TableRow& r, std::ostream* os) { *os << r.name; }
+
 void check_row(const TableRow& r) {
     const std::string scene =
         fmt::format(R"(
