@@ -8,51 +8,11 @@
 #include <cmath>
 #include <vector>
 
+#include "observables/blocked_histogram.hpp"
 #include "observables/observable.hpp"
 
 namespace gran {
 namespace {
-
-using Histogram =
-    decltype(boost::histogram::make_histogram(boost::histogram::axis::regular<>(1, 0.0, 1.0)));
-
-struct BlockedHistogram {
-    std::vector<Histogram> blocks;
-    std::vector<double> entries;  // samples in range+out of range per block
-
-    void write(h5::Group& g, const std::string& prefix) const {
-        const auto& axis = blocks.front().axis();
-        const auto nb = static_cast<std::size_t>(axis.size());
-        std::vector<double> edges(nb + 1), density(nb, 0), error(nb, 0);
-        for (std::size_t k = 0; k <= nb; ++k) edges[k] = axis.bin(int(k)).lower();
-        const double width = edges[1] - edges[0];
-        std::vector<std::vector<double>> per_block;
-        double total = 0;
-        for (const double e : entries) total += e;
-        for (std::size_t b = 0; b < blocks.size(); ++b) {
-            if (entries[b] == 0) continue;
-            std::vector<double> d(nb);
-            for (std::size_t k = 0; k < nb; ++k) d[k] = blocks[b].at(int(k)) / (entries[b] * width);
-            per_block.push_back(d);
-        }
-        for (std::size_t b = 0; b < blocks.size(); ++b) {
-            for (std::size_t k = 0; k < nb; ++k)
-                density[k] += blocks[b].at(int(k)) / (total * width);
-        }
-        const double nblk = double(per_block.size());
-        if (nblk >= 2) {
-            for (std::size_t k = 0; k < nb; ++k) {
-                double mean = 0, var = 0;
-                for (const auto& d : per_block) mean += d[k] / nblk;
-                for (const auto& d : per_block) var += (d[k] - mean) * (d[k] - mean) / (nblk - 1);
-                error[k] = std::sqrt(var / nblk);
-            }
-        }
-        g.write(prefix + "edges", edges);
-        g.write(prefix + "density", density);
-        g.write(prefix + "error", error);
-    }
-};
 
 template <int D>
 class VelocityPdf final : public Observable<D> {
