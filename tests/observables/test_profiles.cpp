@@ -51,7 +51,9 @@ struct TableRow {
 };
 
 // Readable parameter names in test logs.
-void PrintTo(const TableRow& r, std::ostream* os) { *os << r.name; }
+void PrintTo(const TableRow& r, std::ostream* os) {
+    *os << r.name;
+}
 
 void check_row(const TableRow& r) {
     const std::string scene =
@@ -133,18 +135,9 @@ namespace {
 // the Enskog (Henderson) correction is flat within 5% over the bulk 0.2 L < y < 0.8 L at mean
 // packing fraction 0.04, while the ideal-gas part n T_y alone is not.
 TEST(VibratedGas, EnskogEquationOfStateGivesFlatVerticalPressureAndIdealGasDoesNot) {
-    const char* scene = R"(
-dimension: 2
-seed: 3
-species: [{name: a, count: 1000}]
-interactions: {alpha: 0.8}
-box: {packing_fraction: 0.04, periodic: [true, false]}
-drivers: [{type: sawtooth_wall, axis: y, velocity: 1}]
-observables: [{type: profiles, axis: y, bins: 20}]
-run: {equilibration: 200, measurement: 4000, sample_interval: 2}
-)";
-    testing::run_yaml(scene, "eos");
-    auto f = h5::File::open_read((testing::temp_dir() / "eos.h5").string());
+    testing::run_yaml_once(
+        testing::vibrated_gas(1000, 0.8, "[{type: profiles, axis: y, bins: 20}]"), "vibrated_1000");
+    auto f = h5::File::open_read((testing::shared_dir() / "vibrated_1000.h5").string());
     auto g = f.root().group("observables/profiles");
     const auto y = g.read_doubles("position");
     const double L = y.front() + y.back();
@@ -212,26 +205,19 @@ run: {equilibration: 50, measurement: 500, sample_interval: 1}
 // the two wall slabs (3%), although density and temperature vary strongly, and the Enskog equation
 // of state with the vertical temperature predicts it (5%).
 TEST(Pressure, VibratedGasHasUniformMeasuredVerticalPressure) {
-    const char* scene = R"(
-dimension: 2
-seed: 3
-species: [{name: a, count: 1000}]
-interactions: {alpha: 0.8}
-box: {packing_fraction: 0.04, periodic: [true, false]}
-drivers: [{type: sawtooth_wall, axis: y, velocity: 1}]
-observables: [{type: profiles, axis: y, bins: 20}]
-run: {equilibration: 200, measurement: 4000, sample_interval: 2}
-)";
-    testing::run_yaml(scene, "pyy");
-    const auto p = profile_of("pyy", "pressure/P_yy");
-    const auto eos = profile_of("pyy", "eos/P_enskog_yy");
+    testing::run_yaml_once(
+        testing::vibrated_gas(1000, 0.8, "[{type: profiles, axis: y, bins: 20}]"), "vibrated_1000");
+    auto f = h5::File::open_read((testing::shared_dir() / "vibrated_1000.h5").string());
+    auto g = f.root().group("observables/profiles");
+    const auto p = g.read_doubles("pressure/P_yy");
+    const auto eos = g.read_doubles("eos/P_enskog_yy");
     double mean = 0;
     for (std::size_t b = 1; b + 1 < p.size(); ++b) mean += p[b] / double(p.size() - 2);
     for (std::size_t b = 1; b + 1 < p.size(); ++b) {
         EXPECT_NEAR(p[b] / mean, 1.0, 0.03) << "slab " << b;
         EXPECT_NEAR(eos[b] / p[b], 1.0, 0.05) << "slab " << b;
     }
-    const auto pxx = profile_of("pyy", "pressure/P_xx");
+    const auto pxx = g.read_doubles("pressure/P_xx");
     EXPECT_LT(pxx[1], 0.8 * p[1]) << "the pressure tensor is anisotropic near the walls";
 }
 

@@ -16,19 +16,14 @@
 namespace gran {
 namespace {
 
+const char* kObservables =
+    "[{type: restitution_statistics}, {type: velocity_pdf}, {type: slab_velocity_pdf, slabs: "
+    "[0.03, 0.5], width: 0.06}]";
+
 TEST(RestitutionStatistics, VibratedGasHasAlpha1dAboveOneWithInverseSquareTail) {
-    const char* scene = R"(
-dimension: 2
-seed: 3
-species: [{name: a, count: 500}]
-interactions: {alpha: 0.9}
-box: {packing_fraction: 0.04, periodic: [true, false]}
-drivers: [{type: sawtooth_wall, axis: y, velocity: 1}]
-observables: [{type: restitution_statistics}, {type: velocity_pdf}]
-run: {equilibration: 200, measurement: 4000, sample_interval: 2}
-)";
-    const YAML::Node s = testing::run_yaml(scene, "alpha1d");
-    auto f = h5::File::open_read((testing::temp_dir() / "alpha1d.h5").string());
+    const YAML::Node s =
+        testing::run_yaml_once(testing::vibrated_gas(500, 0.9, kObservables), "vibrated_500");
+    auto f = h5::File::open_read((testing::shared_dir() / "vibrated_500.h5").string());
     auto g = f.root().group("observables/restitution_statistics");
     const double above =
         testing::value(s["observables"]["restitution_statistics"]["fraction_above_one"]);

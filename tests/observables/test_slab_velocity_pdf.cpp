@@ -40,18 +40,14 @@ int prominent_peaks(const std::vector<double>& d) {
 }
 
 TEST(SlabVelocityPdf, VerticalDistributionIsDoublePeakedNextToSawtoothWallOnly) {
-    const char* scene = R"(
-dimension: 2
-seed: 3
-species: [{name: a, count: 500}]
-interactions: {alpha: 0.9}
-box: {packing_fraction: 0.04, periodic: [true, false]}
-drivers: [{type: sawtooth_wall, axis: y, velocity: 1}]
-observables: [{type: slab_velocity_pdf, slabs: [0.03, 0.5], width: 0.06}]
-run: {equilibration: 200, measurement: 4000, sample_interval: 2}
-)";
-    const YAML::Node s = testing::run_yaml(scene, "slabs");
-    auto f = h5::File::open_read((testing::temp_dir() / "slabs.h5").string());
+    // The same run as tests/observables/test_restitution_statistics.cpp.
+    const YAML::Node s = testing::run_yaml_once(
+        testing::vibrated_gas(
+            500, 0.9,
+            "[{type: restitution_statistics}, {type: velocity_pdf}, {type: slab_velocity_pdf, "
+            "slabs: [0.03, 0.5], width: 0.06}]"),
+        "vibrated_500");
+    auto f = h5::File::open_read((testing::shared_dir() / "vibrated_500.h5").string());
     auto g = f.root().group("observables/slab_velocity_pdf");
     EXPECT_EQ(prominent_peaks(g.read_doubles("slab_0/a/y/scaled_density")), 2)
         << "next to the wall";
