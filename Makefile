@@ -30,8 +30,8 @@ build: configure
 
 demo: build
 	@mkdir -p results/demo
-	$(BUILD_DIR)/gran run studies/demo/binary-thermostat-2d.yaml -o results/demo/binary-thermostat-2d.h5
-	$(PY) studies/plot_result.py results/demo/binary-thermostat-2d.h5 -o results/demo/binary-thermostat-2d.png
+	$(BUILD_DIR)/gran run studies/demo/vibrated-mixture-2d.yaml -o results/demo/vibrated-mixture-2d.h5
+	$(PY) studies/plot_result.py results/demo/vibrated-mixture-2d.h5 -o results/demo/vibrated-mixture-2d.png
 	@echo "demo: results in results/demo/"
 
 test: build

@@ -24,6 +24,7 @@ Needs h5py, numpy and matplotlib (Debian: python3-h5py python3-numpy python3-mat
 
 import argparse
 import math
+import warnings
 import re
 import sys
 from pathlib import Path
@@ -274,6 +275,14 @@ def summary_lines(f):
             for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
                 if scalar(g, key) is not None:
                     lines.append(f"    {key} = {with_error(*scalar(g, key))}")
+    prof = first_observable(f, "profiles")
+    middle = prof.get("middle") if prof is not None else None
+    middle_ratios = middle.get("ratios") if isinstance(middle, h5py.Group) else None
+    for ratio, g in (middle_ratios.items() if isinstance(middle_ratios, h5py.Group) else []):
+        lines.append(f"{ratio.replace('_over_', ' / ')} in the middle of the cell:")
+        for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
+            if scalar(g, key) is not None:
+                lines.append(f"    {key} = {with_error(*scalar(g, key))}")
     coll = first_observable(f, "collision_statistics")
     if scalar(coll, "frequency_per_particle") is not None:
         freq = with_error(*scalar(coll, "frequency_per_particle"))
@@ -298,7 +307,55 @@ def plot_summary(ax, f):
     return True
 
 
-PANELS = (plot_temperatures, plot_velocity_pdfs, plot_kinetic_energy, plot_summary)
+def plot_profiles(ax, f):
+    """Packing fraction (solid) and temperature (dashed, right axis) across the cell, per species."""
+    obs = first_observable(f, "profiles")
+    y = array(obs, "position")
+    if y is None:
+        return False
+    twin = ax.twinx()
+    for k, (name, g) in enumerate(species_groups(obs, "packing_fraction").items()):
+        colour = f"C{k}"
+        ax.plot(y, array(g, "packing_fraction"), color=colour, label=f"{name}: packing fraction")
+        twin.plot(y, array(g, "T"), color=colour, ls="--", label=f"{name}: T")
+    axis = as_text(obs.attrs.get("axis", "y"))
+    ax.set_xlabel(axis)
+    ax.set_ylabel("packing fraction (solid)")
+    twin.set_ylabel("temperature T (dashed)")
+    ax.set_title("Profiles across the cell")
+    lines = ax.get_legend_handles_labels()
+    lines2 = twin.get_legend_handles_labels()
+    ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize="small")
+    return True
+
+
+def plot_profile_ratios(ax, f):
+    """Temperature ratios gamma(y), per component, with the central window shaded."""
+    obs = first_observable(f, "profiles")
+    y = array(obs, "position")
+    ratios = obs.get("ratios") if obs is not None else None
+    if y is None or not isinstance(ratios, h5py.Group):
+        return False
+    for ratio, g in ratios.items():
+        for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
+            values = array(g, key)
+            if values is None:
+                continue
+            errors = array(g, key + "_error")
+            ax.errorbar(y, values, yerr=errors, marker=".", lw=1, capsize=2,
+                        label=f"{key} ({ratio.replace('_over_', '/')})")
+    window = float(obs.attrs.get("middle_window", 0.2))
+    length = float(y[0] + y[-1])
+    ax.axvspan(0.5 * (1 - window) * length, 0.5 * (1 + window) * length, color="0.9", label="middle window")
+    ax.set_xlabel(as_text(obs.attrs.get("axis", "y")))
+    ax.set_ylabel("temperature ratio")
+    ax.set_title("Temperature ratios across the cell")
+    ax.legend(fontsize="small")
+    return True
+
+
+PANELS = (plot_temperatures, plot_velocity_pdfs, plot_profiles, plot_profile_ratios, plot_kinetic_energy,
+          plot_summary)
 
 
 # --- figure --------------------------------------------------------------------------------------
@@ -306,7 +363,7 @@ PANELS = (plot_temperatures, plot_velocity_pdfs, plot_kinetic_energy, plot_summa
 
 def make_figure(f, source_name):
     """Draw every panel that has data; returns the figure (None when no panel has data)."""
-    fig, axes = plt.subplots(2, 2, figsize=(12, 9))
+    fig, axes = plt.subplots(3, 2, figsize=(12, 13))
     used = []
     for ax, panel in zip(axes.flat, PANELS):
         if panel(ax, f):
@@ -323,7 +380,9 @@ def make_figure(f, source_name):
         ax.set_subplotspec(cell)
     fig.set_size_inches(6 * ncols, 4.5 * nrows)
     fig.suptitle(figure_title(f, source_name), fontsize="medium")
-    fig.tight_layout()
+    with warnings.catch_warnings():  # uneven grids after skipped panels
+        warnings.simplefilter("ignore")
+        fig.tight_layout()
     return fig
 
 
