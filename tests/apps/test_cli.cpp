@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "libgran/h5.hpp"
+#include "tests/support/temp_dir_test.hpp"
 
 namespace {
 
@@ -85,20 +86,9 @@ std::string read_text(const fs::path& p) {
 }
 
 // A fresh directory per test, named after the process and the test.
-class CliTest : public ::testing::Test {
+class CliTest : public gran::testing::TempDirTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("gran_cli_" + std::to_string(::getpid()) + "_" +
-                                            info->test_suite_name() + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-    fs::path dir_;
+    CliTest() : TempDirTest("gran_cli") {}
 };
 
 class BadScenes : public CliTest {};

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "libgran/h5.hpp"
+#include "tests/support/temp_dir_test.hpp"
 
 namespace {
 
@@ -20,20 +21,9 @@ using gran::h5::File;
 using gran::h5::Group;
 
 // Each test gets its own directory: ctest runs tests as parallel processes.
-class H5Test : public ::testing::Test {
+class H5Test : public gran::testing::TempDirTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("gran_h5_" + std::to_string(::getpid()) + "_" +
-                                            info->test_suite_name() + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-    fs::path dir_;
+    H5Test() : TempDirTest("gran_h5") {}
 };
 
 class H5File : public H5Test {};
