@@ -431,4 +431,21 @@ std::vector<std::size_t> Group::shape(const std::string& name) const {
     return {dims.begin(), dims.end()};
 }
 
+void Group::copy_children_from(const Group& src) {
+    silence_hdf5_errors();
+    std::vector<std::string> names;
+    check(H5Literate(
+              src.id_.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr,
+              [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+                  static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+                  return 0;
+              },
+              &names),
+          "list", src.where(""));
+    for (const auto& n : names) {
+        check(H5Ocopy(src.id_.get(), n.c_str(), id_.get(), n.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+              "copy", src.where(n) + " into " + where(n));
+    }
+}
+
 }  // namespace gran::h5

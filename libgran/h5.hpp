@@ -123,6 +123,10 @@ class Group {
     std::string read_attr_string(const std::string& name) const;
     std::vector<std::size_t> shape(const std::string& name) const;  // {} for a scalar
 
+    // Copies every object below `src` (datasets, groups, attributes) into this group under the
+    // same names, e.g. to merge run files into one study file.
+    void copy_children_from(const Group& src);
+
   private:
     friend class File;
     Group(detail::Handle id, std::string file, std::string path)

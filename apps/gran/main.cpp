@@ -1,4 +1,4 @@
-// gran: the command-line program. `gran run`, `gran check`, `gran list`.
+// gran: the command-line program. `gran run`, `gran study`, `gran check`, `gran list`.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -12,6 +12,7 @@
 #include "drivers/driver.hpp"
 #include "libgran/run.hpp"
 #include "libgran/scene.hpp"
+#include "libgran/study.hpp"
 #include "observables/observable.hpp"
 #include "species/pair_law.hpp"
 
@@ -98,6 +99,38 @@ void print_headline(const YAML::Node& summary) {
     }
 }
 
+int cmd_study(const std::string& file, const std::string& out, int jobs, bool quiet) {
+    try {
+        const gran::Study st = gran::load_study(file);
+        gran::StudyOptions opt;
+        opt.output_dir = out;
+        opt.jobs = jobs;
+        opt.gran_binary = std::filesystem::read_symlink("/proc/self/exe").string();
+        opt.progress = !quiet;
+        opt.interrupt = &g_interrupt;
+        // No SA_RESTART: the signal interrupts the wait for runs, so they are stopped at once.
+        struct sigaction sa {};
+        sa.sa_handler = on_signal;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = 0;
+        sigaction(SIGINT, &sa, nullptr);
+        sigaction(SIGTERM, &sa, nullptr);
+        const gran::StudyReport rep = gran::run_study(st, opt);
+        std::cout << fmt::format(
+            "{} ran, {} reused, {} failed{}; at most {} at a time\nresult: {}\ntable: {}\n",
+            rep.ran, rep.reused, rep.failed, rep.interrupted ? " (interrupted)" : "",
+            rep.max_concurrent, rep.merged, rep.table);
+        if (rep.interrupted) return 3;
+        return rep.failed > 0 ? 1 : 0;
+    } catch (const gran::SceneError& e) {
+        std::cerr << "gran: error: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "gran: error: " << e.what() << "\n";
+        return 1;
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -123,8 +156,18 @@ int main(int argc, char** argv) {
     check->add_option("scene", scene_file, "scene file (YAML)")->required();
     check->add_option("--set", sets, "override a scene key (repeatable)");
 
+    auto* study = app.add_subcommand(
+        "study", "run a study (a scene swept over points, grids and replicas) on all cores");
+    std::string study_file, study_out;
+    int jobs = 0;
+    study->add_option("study", study_file, "study file (YAML), see docs/studies.md")->required();
+    study->add_option("-o,--output", study_out, "result folder (default results/<study>)");
+    study->add_option("-j,--jobs", jobs,
+                      "runs at a time (default: the study's `jobs`, else all cores)");
+
     run->fallthrough();
     check->fallthrough();
+    study->fallthrough();
     auto* list =
         app.add_subcommand("list", "document scene sections and plugins with their parameters");
     std::string what;
@@ -135,6 +178,8 @@ int main(int argc, char** argv) {
     spdlog::set_pattern("[%H:%M:%S] [%^%l%$] %v");
 
     if (list->parsed()) return cmd_list(what);
+
+    if (study->parsed()) return cmd_study(study_file, study_out, jobs, quiet);
 
     try {
         gran::Scene scene = gran::load_scene(scene_file, sets);

@@ -21,13 +21,14 @@
 #include <vector>
 
 #include "libgran/h5.hpp"
+#include "tests/support/run_gran.hpp"
 #include "tests/support/temp_dir_test.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kGran = GRAN_BINARY;
+using gran::testing::kGran;
 const std::string kDemo = std::string(GRAN_SOURCE_DIR) + "/studies/demo/binary-thermostat-2d.yaml";
 const std::string kBadScenes = std::string(GRAN_TEST_DATA) + "/bad_scenes";
 
@@ -35,43 +36,8 @@ const std::string kBadScenes = std::string(GRAN_TEST_DATA) + "/bad_scenes";
 const std::vector<std::string> kShortDemo = {
     "--set", "run.measurement=50", "--set", "run.equilibration=5", "--set", "particles=200"};
 
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-struct Outcome {
-    int exit_code = -1;     // valid when !signaled
-    bool signaled = false;  // the program died by a signal (crash)
-    int signal = 0;
-    std::string output;  // stdout and stderr, interleaved
-};
-
-// Runs gran with `args` through the shell, capturing stdout+stderr and the exit status.
-Outcome run_gran(const std::vector<std::string>& args) {
-    // `exec`: the shell becomes gran, so pclose reports gran's own status (and its signal).
-    std::string cmd = "exec " + quote(kGran);
-    for (const auto& a : args) cmd += " " + quote(a);
-    cmd += " 2>&1";
-    Outcome out;
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe) {
-        ADD_FAILURE() << "popen failed for: " << cmd;
-        return out;
-    }
-    char buf[4096];
-    std::size_t n = 0;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) out.output.append(buf, n);
-    const int status = ::pclose(pipe);
-    if (WIFSIGNALED(status)) {
-        out.signaled = true;
-        out.signal = WTERMSIG(status);
-    } else if (WIFEXITED(status)) {
-        out.exit_code = WEXITSTATUS(status);
-    }
-    return out;
-}
+using gran::testing::Outcome;
+using gran::testing::run_gran;
 
 std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
     a.insert(a.end(), b.begin(), b.end());

@@ -1,0 +1,71 @@
+#pragma once
+// Studies: one base scene run at many points (explicit points, a grid, zipped lists, replicas),
+// several runs at a time on the local cores, merged into one HDF5 file with a group per run and a
+// summary table. A run whose result is complete and was produced by the same resolved scene is not
+// run again (resume). The file format is documented in docs/studies.md.
+#include <yaml-cpp/yaml.h>
+
+#include <atomic>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace gran {
+
+// One run of a study: a named point with its scene-key overrides ("a.b.0.c=value").
+struct StudyRun {
+    std::string name;   // file-name safe: point name, grid/zip suffixes, _r<k> for replicas
+    std::string point;  // the point it came from
+    int replica = 0;    // 1..replicas when replicas > 1, else 0
+    std::vector<std::pair<std::string, std::string>> overrides;  // key, value (YAML text)
+    YAML::Node metadata;  // extra keys of the point (e.g. `paper:` values), kept in the result
+    std::string resolved_scene;  // the resolved scene text the run will record (for resume)
+};
+
+// A least-squares power-law fit over the runs: log y = theta log x + c (McNamara & Falcon 2005,
+// Sec. IV: an exponent is reported only when every point lies within `tolerance` of the fit in
+// natural log).
+struct StudyFit {
+    std::string name;
+    std::string x;         // a swept scene key ("drivers.0.velocity") or a summary quantity
+    std::string y;         // a summary quantity ("observables.lid.pressure")
+    std::string group_by;  // optional scene key: one fit per distinct value
+    double tolerance = 0.25;
+};
+
+struct Study {
+    std::string file;                     // the study file
+    std::string scene;                    // base scene path (resolved relative to the study file)
+    std::string output_dir;               // default results/<study file stem>
+    int jobs = 0;                         // 0: all cores
+    std::vector<std::string> swept_keys;  // every key some run overrides, in first-seen order
+    std::vector<StudyRun> runs;
+    std::vector<StudyFit> fits;
+    std::string text;  // the study file as written, stored in the merged result
+};
+
+// Reads and validates a study file; errors (SceneError) name file:line:col and key. Every run's
+// scene is loaded and validated too, so a bad override is refused before anything runs.
+Study load_study(const std::string& path);
+
+struct StudyOptions {
+    std::string output_dir;   // overrides Study::output_dir when not empty
+    int jobs = 0;             // overrides Study::jobs when > 0
+    std::string gran_binary;  // the program that runs one scene (`gran run`)
+    bool progress = true;
+    const std::atomic<bool>* interrupt = nullptr;
+};
+
+struct StudyReport {
+    int ran = 0;
+    int reused = 0;
+    int failed = 0;
+    bool interrupted = false;
+    std::string merged;      // OUTDIR/study.h5
+    std::string table;       // OUTDIR/study.csv
+    int max_concurrent = 0;  // largest number of runs in flight at once
+};
+
+StudyReport run_study(const Study& study, const StudyOptions& options);
+
+}  // namespace gran
