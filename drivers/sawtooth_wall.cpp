@@ -10,13 +10,14 @@ template <int D>
 class SawtoothWall final : public WallDriver<D> {
   public:
     SawtoothWall(const Params& p, const SceneInfo& info)
-        : WallDriver<D>(p, info, &sawtooth_wall_rule<D>, make(p), "sawtooth") {}
+        : WallDriver<D>(p, info, &impact_wall_rule<D>, make(p), "sawtooth",
+                        WallMotion::sawtooth(p.real("velocity")),
+                        WallMotion::sawtooth(p.real("velocity"))) {}
 
   private:
     static WallParams make(const Params& p) {
         WallParams w;
-        w.velocity = p.real("velocity");
-        w.restitution = p.real("restitution");
+        w.restitution = read_wall_restitution(p);
         return w;
     }
 };
@@ -24,9 +25,12 @@ class SawtoothWall final : public WallDriver<D> {
 const bool registered = register_plugin<Driver, SawtoothWall>(
     "sawtooth_wall",
     "sawtooth vibrating wall: particles meet the wall moving into the gas at speed v0",
-    wall_schema(
-        {real("velocity", "", "velocity", "wall speed v0 (directed into the gas)", 0, 1e308, true),
-         real("restitution", "1", "", "particle-wall normal restitution", 0, 1, true, false)}));
+    wall_schema([] {
+        Schema s{real("velocity", "", "velocity", "wall speed v0 (directed into the gas)", 0, 1e308,
+                      true)};
+        for (auto& r : wall_restitution_schema()) s.push_back(r);
+        return s;
+    }()));
 
 }  // namespace
 }  // namespace gran

@@ -1,4 +1,5 @@
-// Static wall with normal restitution e: v_n' = -e v_n (e = 1: the default elastic wall).
+// Static wall with normal restitution e: v_n' = -e v_n (e = 1: the default elastic wall), e
+// constant or a function of the impact speed.
 #include "drivers/wall_driver.hpp"
 
 namespace gran {
@@ -8,14 +9,19 @@ template <int D>
 class StaticWall final : public WallDriver<D> {
   public:
     StaticWall(const Params& p, const SceneInfo& info)
-        : WallDriver<D>(p, info, &static_wall_rule<D>, WallParams{p.real("restitution")},
-                        "static") {}
+        : WallDriver<D>(p, info, &impact_wall_rule<D>, make(p), "static") {}
+
+  private:
+    static WallParams make(const Params& p) {
+        WallParams w;
+        w.restitution = read_wall_restitution(p);
+        return w;
+    }
 };
 
 const bool registered = register_plugin<Driver, StaticWall>(
-    "static_wall", "static wall on a bounded axis with normal restitution",
-    wall_schema(
-        {real("restitution", "1", "", "normal restitution against the wall", 0, 1, true, false)}));
+    "static_wall", "static wall on a bounded axis (e.g. a lid) with normal restitution",
+    wall_schema(wall_restitution_schema()));
 
 }  // namespace
 }  // namespace gran

@@ -1,19 +1,22 @@
 #pragma once
 // Walls as drivers: a wall rule (species/wall_rules.hpp) installed on one or both walls of a
-// bounded axis. Shared by the static, thermal and sawtooth wall plugins.
+// bounded axis, static or moving with a prescribed waveform. Shared by the static, thermal,
+// sawtooth and vibrating wall plugins.
 #include <fmt/format.h>
 
+#include <array>
 #include <string>
 
 #include "drivers/driver.hpp"
 #include "libgran/random.hpp"
+#include "species/restitution_params.hpp"
 
 namespace gran {
 
-inline Schema wall_schema(Schema extra) {
+inline Schema wall_schema(Schema extra, std::string default_side = "both") {
     Schema s{
         choice("axis", "", {"x", "y", "z"}, "wall normal: a bounded axis (box.periodic false)"),
-        choice("side", "both", {"lower", "upper", "both"},
+        choice("side", std::move(default_side), {"lower", "upper", "both"},
                "wall at 0 (lower), at L (upper), or both")};
     s.insert(s.end(), extra.begin(), extra.end());
     return s;
@@ -25,9 +28,11 @@ class WallDriver : public Driver<D> {
     using Rule = typename EventDrivenEngine<D>::WallRule;
 
     WallDriver(const Params& p, const SceneInfo& info, Rule rule, WallParams params,
-               std::string what)
+               std::string what, WallMotion lower_motion = WallMotion::fixed(),
+               WallMotion upper_motion = WallMotion::fixed())
         : rule_(rule),
           params_(params),
+          motion_{lower_motion, upper_motion},
           what_(std::move(what)),
           rng_(make_rng(info.seed + 7919ull * (info.index + 1), Stream::Driver)) {
         const std::string axis = p.str("axis");
@@ -45,30 +50,35 @@ class WallDriver : public Driver<D> {
 
     void attach(EventDrivenEngine<D>& engine) override {
         engine_ = &engine;
-        if (lower_) engine.set_wall(axis_, 0, rule_, params_, &rng_);
-        if (upper_) engine.set_wall(axis_, 1, rule_, params_, &rng_);
+        if (lower_) engine.set_wall(axis_, 0, rule_, params_, &rng_, motion_[0]);
+        if (upper_) engine.set_wall(axis_, 1, rule_, params_, &rng_, motion_[1]);
     }
 
     void write(h5::Group& g, YAML::Node& summary) const override {
         if (!engine_) return;
         g.attr("wall", what_);
         const auto& hits = engine_->wall_hits();
-        if (lower_) {
-            g.write_scalar("hits_lower", static_cast<std::int64_t>(hits[std::size_t(2 * axis_)]));
-            summary["hits_lower"] = hits[std::size_t(2 * axis_)];
-        }
-        if (upper_) {
-            g.write_scalar("hits_upper",
-                           static_cast<std::int64_t>(hits[std::size_t(2 * axis_ + 1)]));
-            summary["hits_upper"] = hits[std::size_t(2 * axis_ + 1)];
+        const auto& impulse = engine_->wall_impulse();
+        for (int side = 0; side < 2; ++side) {
+            if (side == 0 ? !lower_ : !upper_) continue;
+            const std::string name = side == 0 ? "lower" : "upper";
+            const auto code = std::size_t(2 * axis_ + side);
+            g.write_scalar("hits_" + name, static_cast<std::int64_t>(hits[code]));
+            summary["hits_" + name] = hits[code];
+            // Whole run (equilibration included); the wall_pressure observable measures rates.
+            g.write_scalar("impulse_" + name, impulse[code]);
+            g.attr_on("impulse_" + name, "unit", "mass velocity");
         }
     }
 
   private:
     Rule rule_;
     WallParams params_;
+    std::array<WallMotion, 2> motion_;  // lower, upper
     std::string what_;
     Rng rng_;
+
+  protected:
     int axis_ = 0;
     bool lower_ = true, upper_ = true;
     const EventDrivenEngine<D>* engine_ = nullptr;

@@ -17,12 +17,25 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     sigma_pair_.resize(ns_ * ns_);
     alpha_pair_.resize(ns_ * ns_);
     beta_pair_.resize(ns_ * ns_);
+    restitution_pair_.resize(ns_ * ns_);
     for (std::size_t a = 0; a < ns_; ++a) {
         for (std::size_t b = 0; b < ns_; ++b) {
             sigma_pair_[a * ns_ + b] = 0.5 * (diameter_[a] + diameter_[b]);
             alpha_pair_[a * ns_ + b] = table.pair(a, b).alpha;
             beta_pair_[a * ns_ + b] = table.pair(a, b).beta;
+            restitution_pair_[a * ns_ + b] = table.pair(a, b).restitution;
+            if (table.pair(a, b).restitution.kind != ImpactRestitution::Kind::constant)
+                impact_dependent_ = true;
         }
+    }
+    for (int a = 0; a < D; ++a) {
+        g_[a] = settings_.gravity[std::size_t(a)];
+        if (g_[a] != 0.0) gravity_ = true;
+    }
+    for (int a = 0; a < 3; ++a) {
+        if (a >= D && settings_.gravity[std::size_t(a)] != 0.0)
+            throw std::invalid_argument("EventDrivenEngine: gravity has a component beyond the " +
+                                        std::to_string(D) + " dimensions of the box");
     }
     rough_ = p_.rotating();
     if (table.rough() && !rough_) {
@@ -42,6 +55,13 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     now_ = 0;
     for (std::size_t i = 0; i < n; ++i) now_ = std::max(now_, p_.t[i]);
     build_cells();
+    for (int a = 0; a < D; ++a) {
+        for (int side = 0; side < 2; ++side) {
+            WallSlot& w = walls_[std::size_t(2 * a + side)];
+            w.base = side == 0 ? 0.0 : box_.length[a];
+            w.simple = g_[a] == 0.0;
+        }
+    }
     id_.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) id_[i] = i;
     sort_every_ = 16 * std::uint64_t(std::max<std::size_t>(n, 64));
@@ -207,20 +227,7 @@ int EventDrivenEngine<D>::neighbour_cells(std::uint32_t i, std::int32_t* out, in
 template <int D>
 void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells,
                                       double& best_out, std::int32_t& partner_out) const {
-    // Locals (not the reference arguments or members) in the loop: writes through references
-    // would force the compiler to reload every array pointer after each improvement.
-    const Vec<D>* r = p_.r.data();
-    const Vec<D>* v = p_.v.data();
-    const double* t_local = p_.t.data();
-    const std::uint32_t* species = p_.species.data();
-    const double now = now_;
-    const Vec<D> ri = r[i];
-    const Vec<D> vi = v[i];
-    const double* sig = &sigma_pair_[species[i] * ns_];
-    double best = best_out;
-    std::int32_t partner = partner_out;
-    // One species: the contact distance is a constant and the species array is not read.
-    // Gather the candidates (see the cell layouts in the header).
+    // Gather the candidates (see the cell layouts in the header), then scan them.
     std::uint32_t* buf = gather_.data();
     std::size_t n = 0;
     if (slots_) {
@@ -236,27 +243,60 @@ void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells
                 buf[n++] = std::uint32_t(j);
         }
     }
+    if (gravity_) {
+        scan_gathered<true>(i, n, best_out, partner_out);
+    } else {
+        scan_gathered<false>(i, n, best_out, partner_out);
+    }
+}
+
+template <int D>
+template <bool Gravity>
+void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, std::size_t n, double& best_out,
+                                         std::int32_t& partner_out) const {
+    // Locals (not the reference arguments or members) in the loop: writes through references
+    // would force the compiler to reload every array pointer after each improvement.
+    const Vec<D>* r = p_.r.data();
+    const Vec<D>* v = p_.v.data();
+    const double* t_local = p_.t.data();
+    const std::uint32_t* species = p_.species.data();
+    const std::uint32_t* buf = gather_.data();
+    const double now = now_;
+    const Vec<D> ri = r[i];
+    const Vec<D> vi = v[i];
+    const Vec<D> g = g_;
+    const double* sig = &sigma_pair_[species[i] * ns_];
+    double best = best_out;
+    std::int32_t partner = partner_out;
     auto scan = [&](auto contact) {
         for (std::size_t m = 0; m < n; ++m) {
             const std::uint32_t j = buf[m];
-            {
-                if (j == i) continue;
-                const Vec<D> rj = r[j] + v[j] * (now - t_local[j]);
-                const Vec<D> dr = box_.separation(ri, rj);
-                const Vec<D> dv = vi - v[j];
-                const double t = pair_collision_time<D>(dr, dv, contact(j), best);
-                if (t < best) {
-                    best = t;
-                    partner = std::int32_t(j);
-                }
+            if (j == i) continue;
+            const double dt = now - t_local[j];
+            Vec<D> rj, vj;
+            if constexpr (Gravity) {
+                // Both fall alike: the relative motion stays linear.
+                rj = r[j] + dt * (v[j] + (0.5 * dt) * g);
+                vj = v[j] + dt * g;
+            } else {
+                rj = r[j] + v[j] * dt;
+                vj = v[j];
+            }
+            const Vec<D> dr = box_.separation(ri, rj);
+            const Vec<D> dv = vi - vj;
+            const double t = pair_collision_time<D>(dr, dv, contact(j), best);
+            if (t < best) {
+                best = t;
+                partner = std::int32_t(j);
             }
         }
     };
+    // One species: the contact distance is a constant and the species array is not read.
     if (ns_ == 1) {
         const double s0 = sig[0];
-        scan([s0](std::int32_t) { return s0; });
+        scan([s0](std::uint32_t) { return s0; });
     } else {
-        scan([sig, species](std::int32_t j) { return sig[species[j]]; });
+        scan([sig, species](std::uint32_t j) { return sig[species[j]]; });
     }
     best_out = best;
     partner_out = partner;
@@ -300,42 +340,110 @@ void EventDrivenEngine<D>::schedule(std::uint32_t i, double collision, std::int3
     double best = collision;
     std::uint8_t kind = partner >= 0 ? kCollision : kNone;
     std::int32_t code_best = partner;
-    const Vec<D>& ri = p_.r[i];
-    const Vec<D>& vi = p_.v[i];
-    const double radius = 0.5 * diameter_[p_.species[i]];
-    // Cell crossings, or walls on bounded axes.
+    // Cell crossings, and walls on bounded axes.
     for (int a = 0; a < D; ++a) {
-        const double va = vi[a];
-        if (va == 0.0) continue;
-        double t;
-        std::uint8_t k;
-        if (va > 0) {
-            if (box_.periodic[a] || cc_[i][a] < ncell_[a] - 1) {
-                t = ((cc_[i][a] + 1) * cell_width_[a] - ri[a]) / va;
-                k = kCell;
-            } else {
-                t = (box_.length[a] - radius - ri[a]) / va;
-                k = kWall;
-            }
-        } else {
-            if (box_.periodic[a] || cc_[i][a] > 0) {
-                t = (cc_[i][a] * cell_width_[a] - ri[a]) / va;
-                k = kCell;
-            } else {
-                t = (radius - ri[a]) / va;
-                k = kWall;
-            }
-        }
-        t = std::max(t, 0.0);
+        std::uint8_t k = kNone;
+        int code = 0;
+        const double t = axis_event(i, a, best, k, code);
         if (t < best) {
             best = t;
             kind = k;
-            code_best = 2 * a + (va > 0 ? 1 : 0);
+            code_best = code;
         }
     }
     ev_time_[i] = now_ + best;
     ev_kind_[i] = kind;
     ev_partner_[i] = code_best;
+}
+
+namespace {
+
+// Earliest s >= 0 at which x(s) = c + v s + a s^2 / 2 (c: position relative to a cell boundary)
+// crosses 0 moving in direction dir (+1 up, -1 down), or +inf. Direction-aware so a particle that
+// has just crossed a boundary (and sits on it, either side by round-off) is never sent back at
+// once: the roots are labelled by the velocity v + a s = +-sqrt(v^2 - 2 a c) they cross with. Only
+// a particle already past the boundary and moving (or, at rest, accelerating) on crosses now.
+inline double directed_crossing(double c, double v, double a, int dir) {
+    if (dir * c >= 0.0 && (dir * v > 0.0 || (v == 0.0 && dir * a > 0.0))) return 0.0;
+    if (a == 0.0) return dir * v > 0.0 ? std::max(-c / v, 0.0) : kInf;
+    const double disc = v * v - 2.0 * a * c;
+    if (!(disc > 0.0)) return kInf;
+    const double sq = std::sqrt(disc);
+    // Root crossing upward: v + a s = +sq; downward: v + a s = -sq (cancellation-free forms).
+    double s;
+    if (dir > 0) {
+        s = v > 0.0 ? -2.0 * c / (sq + v) : (sq - v) / a;
+    } else {
+        s = v < 0.0 ? 2.0 * c / (sq - v) : -(v + sq) / a;
+    }
+    return s >= 0.0 ? s : kInf;
+}
+
+}  // namespace
+
+template <int D>
+double EventDrivenEngine<D>::axis_event(std::uint32_t i, int a, double best, std::uint8_t& kind,
+                                        int& code) const {
+    const double x = p_.r[i][a];
+    const double v = p_.v[i][a];
+    const double ga = g_[a];
+    const std::int32_t c = cc_[i][a];
+    const std::int32_t nc = ncell_[a];
+    const bool periodic = box_.periodic[a];
+    const double w = cell_width_[a];
+    double t_best = kInf;
+    // Cell crossings (never out of the box on a bounded axis: the walls come first).
+    if (ga == 0.0) {
+        if (v > 0.0 && (periodic || c < nc - 1)) {
+            t_best = std::max(((c + 1) * w - x) / v, 0.0);
+            kind = kCell;
+            code = 2 * a + 1;
+        } else if (v < 0.0 && (periodic || c > 0)) {
+            t_best = std::max((c * w - x) / v, 0.0);
+            kind = kCell;
+            code = 2 * a;
+        }
+    } else {
+        if (periodic || c < nc - 1) {
+            const double t = directed_crossing(x - (c + 1) * w, v, ga, +1);
+            if (t < t_best) {
+                t_best = t;
+                kind = kCell;
+                code = 2 * a + 1;
+            }
+        }
+        if (periodic || c > 0) {
+            const double t = directed_crossing(x - c * w, v, ga, -1);
+            if (t < t_best) {
+                t_best = t;
+                kind = kCell;
+                code = 2 * a;
+            }
+        }
+    }
+    if (periodic) return t_best;
+    const double radius = 0.5 * diameter_[p_.species[i]];
+    const double horizon = std::min(best, t_best);
+    for (int side = 0; side < 2; ++side) {
+        const WallSlot& wall = walls_[std::size_t(2 * a + side)];
+        const bool in_reach = side == 0 ? c < wall.layers : c >= nc - wall.layers;
+        if (!in_reach) continue;
+        double t;
+        if (wall.simple) {
+            if (side == 0 ? v >= 0.0 : v <= 0.0) continue;
+            t = std::max(((side == 0 ? radius : box_.length[a] - radius) - x) / v, 0.0);
+        } else {
+            const double abs_t = next_wall_contact(wall.motion, wall.base, side == 0 ? 1 : -1, x, v,
+                                                   ga, radius, now_, now_ + horizon);
+            t = abs_t - now_;
+        }
+        if (t < t_best) {
+            t_best = t;
+            kind = kWall;
+            code = 2 * a + side;
+        }
+    }
+    return t_best;
 }
 
 template <int D>
@@ -350,6 +458,10 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
     if (dist < sigma_pair_[pij] * (1.0 - 1e-10)) ++counters_.overlap_collisions;
     double alpha = alpha_pair_[pij];
     double beta = beta_pair_[pij];
+    if (impact_dependent_) {
+        // r(v) laws take the normal relative speed at impact (McNamara & Falcon 2005, Eq. 1).
+        alpha = restitution(restitution_pair_[pij], (p_.v[i] - p_.v[j]).dot(n));
+    }
     if (settings_.tc_guard &&
         (now_ - last_collision_[i] < settings_.tc || now_ - last_collision_[j] < settings_.tc)) {
         alpha = 1.0;
@@ -430,16 +542,42 @@ template <int D>
 void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
     move(i);
     const int a = code / 2;
-    const bool upper = code % 2;
-    // Only a particle still moving into the wall is reflected.
-    if ((upper && p_.v[i][a] > 0) || (!upper && p_.v[i][a] < 0)) {
-        const WallSlot& w = walls_[std::size_t(code)];
-        if (w.rule) {
-            w.rule(p_.v[i], a, upper ? -1.0 : 1.0, w.params, *w.rng, mass_[p_.species[i]]);
+    const int side = code % 2;
+    const double inward = side ? -1.0 : 1.0;
+    const WallSlot& w = walls_[std::size_t(code)];
+    const double m = mass_[p_.species[i]];
+    const double u = wall_velocity(w.motion, side ? -1 : 1, now_);
+    const double before = p_.v[i][a];
+    // Only a particle still moving into the wall (relative to it) is reflected.
+    if (inward * (before - u) < 0.0) {
+        if (!w.rule) {
+            p_.v[i][a] = 2.0 * u - before;  // static elastic wall (u = 0)
+        } else if (settings_.tc_guard && now_ - last_collision_[i] < settings_.tc) {
+            // TC model at walls too: a hit within tc of the last collision is elastic.
+            WallParams elastic = w.params;
+            elastic.restitution = constant_impact_restitution(1.0);
+            w.rule(p_.v[i], a, inward, u, elastic, *w.rng, m);
+            ++counters_.tc_wall_hits;
         } else {
-            p_.v[i][a] = -p_.v[i][a];  // static elastic wall
+            w.rule(p_.v[i], a, inward, u, w.params, *w.rng, m);
         }
     }
+    if (!w.simple) {
+        // Resting contact under gravity (or a wall accelerating into the particle): a rebound
+        // slower than acc * tc would come back within 2 tc, and at zero speed the same contact
+        // would repeat at the same time. The rebound is raised to acc * tc, so a particle resting
+        // on a floor makes micro-bounces of period 2 tc (documented in docs/physics.md).
+        const double acc_in = -inward * (g_[a] - w.motion.acceleration(now_));
+        if (acc_in > 0.0) {
+            const double lift = acc_in * std::max(settings_.tc, 1e-300);
+            if (inward * (p_.v[i][a] - u) < lift) {
+                p_.v[i][a] = u + inward * lift;
+                ++counters_.wall_lifts;
+            }
+        }
+    }
+    wall_impulse_[std::size_t(code)] += m * std::abs(p_.v[i][a] - before);
+    last_collision_[i] = now_;
     ++count_[i];
     ++counters_.wall_hits;
     ++wall_hit_count_[std::size_t(code)];
@@ -449,11 +587,33 @@ void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
 
 template <int D>
 void EventDrivenEngine<D>::set_wall(int axis, int side, WallRule rule, const WallParams& params,
-                                    Rng* rng) {
+                                    Rng* rng, const WallMotion& motion) {
     if (axis < 0 || axis >= D || box_.periodic[std::size_t(axis)]) {
         throw std::invalid_argument("set_wall: walls need a bounded (non-periodic) axis");
     }
-    walls_[std::size_t(2 * axis + side)] = WallSlot{rule, params, rng};
+    WallSlot& w = walls_[std::size_t(2 * axis + side)];
+    w.rule = rule;
+    w.params = params;
+    w.rng = rng;
+    w.motion = motion;
+    const double reach = motion.reach();
+    w.base = side == 0 ? reach : box_.length[axis] - reach;
+    w.simple = motion.is_static() && g_[axis] == 0.0;
+    // A particle centre in contact lies within 2 reach + radius of the box boundary.
+    double dmax = 0;
+    for (double d : diameter_) dmax = std::max(dmax, d);
+    const auto layers =
+        static_cast<std::int32_t>(std::floor((2.0 * reach + 0.5 * dmax) / cell_width_[axis])) + 1;
+    w.layers = std::min(layers, ncell_[axis]);
+    if (2.0 * reach + dmax > box_.length[axis]) {
+        throw std::invalid_argument("set_wall: the wall's excursion leaves no room for particles");
+    }
+    // Events already scheduled ignore this wall: predict again.
+    if (p_.size() > 0) {
+        synchronize();
+        for (std::uint32_t i = 0; i < p_.size(); ++i) predict(i);
+        queue_.rebuild([this](std::uint32_t k) { return ev_time_[k]; });
+    }
 }
 
 template <int D>

@@ -13,24 +13,28 @@
 //  - the TC model against inelastic collapse (Luding & McNamara, Granular Matter 1, 113 (1998)):
 //    a collision within tc of a previous collision of either partner is elastic. Counted.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "drivers/wall_motion.hpp"
 #include "libgran/box.hpp"
 #include "libgran/collision_record.hpp"
 #include "libgran/event_queue.hpp"
 #include "libgran/particles.hpp"
 #include "species/collision_rules.hpp"
+#include "species/impact_restitution.hpp"
 #include "species/species.hpp"
 #include "species/wall_rules.hpp"
 
 namespace gran {
 
 struct EngineSettings {
-    bool tc_guard = true;  // TC model on by default
-    double tc = 1e-6;      // [time]
+    bool tc_guard = true;                    // TC model on by default
+    double tc = 1e-6;                        // [time]
+    std::array<double, 3> gravity{0, 0, 0};  // uniform acceleration [length/time^2]
 };
 
 struct EngineCounters {
@@ -45,6 +49,8 @@ struct EngineCounters {
     std::uint64_t full_reschedules = 0;  // all events recomputed (e.g. after thermostat kicks)
     std::uint64_t full_rescans_after_crossing = 0;  // crossings whose kept collision went stale
     std::uint64_t sorts = 0;                        // re-sorts of the particle storage by cell
+    std::uint64_t tc_wall_hits = 0;                 // wall hits made elastic by the TC guard
+    std::uint64_t wall_lifts = 0;  // hits whose rebound was raised to the resting speed g tc
 };
 
 // Collision time of two spheres at separation dr, relative velocity dv, contact distance sigma.
@@ -105,10 +111,21 @@ class EventDrivenEngine {
     void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
 
     // Particle-wall rule of one wall of a bounded axis (side 0: lower, 1: upper); the default is a
-    // static elastic wall. Wall drivers install theirs; `rng` must outlive the engine.
-    using WallRule = void (*)(Vec<D>& v, int axis, double inward, const WallParams& params,
-                              Rng& rng, double mass);
-    void set_wall(int axis, int side, WallRule rule, const WallParams& params, Rng* rng);
+    // static elastic wall. Wall drivers install theirs; `rng` must outlive the engine. u is the
+    // wall's velocity along the axis at the hit. A moving wall's surface is at
+    // base + motion.position(t) with base = motion.reach() for the lower wall and
+    // L - motion.reach() for the upper one: its whole excursion lies inside the box.
+    using WallRule = void (*)(Vec<D>& v, int axis, double inward, double u,
+                              const WallParams& params, Rng& rng, double mass);
+    void set_wall(int axis, int side, WallRule rule, const WallParams& params, Rng* rng,
+                  const WallMotion& motion = WallMotion::fixed());
+    // Surface position of a wall at time t (index 2 * axis + side).
+    double wall_position(int code, double t) const {
+        return walls_[std::size_t(code)].base + walls_[std::size_t(code)].motion.position(t);
+    }
+    // Momentum given to each wall, sum of m |v_n' - v_n| over its hits (index 2 * axis + side).
+    const std::array<double, 2 * D>& wall_impulse() const { return wall_impulse_; }
+    const Vec<D>& gravity() const { return g_; }
     bool wall_is_set(int axis, int side) const {
         return walls_[std::size_t(2 * axis + side)].rule != nullptr;
     }
@@ -119,7 +136,14 @@ class EventDrivenEngine {
     enum Kind : std::uint8_t { kNone, kCollision, kCell, kWall };
 
     void move(std::uint32_t i) {
-        p_.r[i] += p_.v[i] * (now_ - p_.t[i]);
+        const double dt = now_ - p_.t[i];
+        if (gravity_) {
+            // Parabolic free flight (uniform gravity).
+            p_.r[i] += dt * (p_.v[i] + (0.5 * dt) * g_);
+            p_.v[i] += dt * g_;
+        } else {
+            p_.r[i] += p_.v[i] * dt;
+        }
         p_.t[i] = now_;
     }
     void predict(std::uint32_t i);
@@ -128,6 +152,9 @@ class EventDrivenEngine {
                         int layer_dir = 0) const;
     void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
                     std::int32_t& partner) const;
+    template <bool Gravity>
+    void scan_gathered(std::uint32_t i, std::size_t n, double& best, std::int32_t& partner) const;
+    double axis_event(std::uint32_t i, int a, double best, std::uint8_t& kind, int& code) const;
     void schedule(std::uint32_t i, double collision, std::int32_t partner);
     void collide(std::uint32_t i, std::uint32_t j);
     void cross_cell(std::uint32_t i, int code);
@@ -147,7 +174,11 @@ class EventDrivenEngine {
     std::size_t ns_ = 0;
     std::vector<double> mass_, diameter_, inertia_;
     std::vector<double> sigma_pair_, alpha_pair_, beta_pair_;
+    std::vector<ImpactRestitution> restitution_pair_;
+    bool impact_dependent_ = false;  // some pair law depends on the impact speed
     bool rough_ = false;
+    Vec<D> g_ = Vec<D>::Zero();
+    bool gravity_ = false;
 
     // per particle
     std::vector<std::uint32_t> count_;  // collision counter (velocity changes)
@@ -186,9 +217,14 @@ class EventDrivenEngine {
         WallRule rule = nullptr;
         WallParams params;
         Rng* rng = nullptr;
+        WallMotion motion;
+        double base = 0;     // surface position at zero displacement
+        int layers = 1;      // cell layers (from this wall) whose particles can reach it
+        bool simple = true;  // static and no gravity along the axis: the linear fast path
     };
     std::array<WallSlot, 2 * D> walls_{};
     std::array<std::uint64_t, 2 * D> wall_hit_count_{};
+    std::array<double, 2 * D> wall_impulse_{};
 
     void sort_by_cell();
     std::vector<std::uint32_t> id_;

@@ -211,6 +211,9 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
                 if (engine.now() >= t_target) break;
             }
             if (interrupted || stalled) break;
+            // Observables read positions and velocities at now() (under gravity velocities change
+            // in free flight too).
+            engine.synchronize();
             SampleContext<D> ctx{engine.now(), measuring, expected_samples, engine, sc.species};
             for (auto& o : observables) o->sample(ctx);
             if (measuring) {
@@ -275,7 +278,11 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
         std::string cmd;
         for (const auto& a : opt.command_line) cmd += (cmd.empty() ? "" : " ") + a;
         par.attr("command_line", cmd);
-        par.attr("units", "reduced: lengths, masses and energies as given in the scene (k_B = 1)");
+        par.attr("units", sc.units == "SI"
+                              ? "SI: lengths in m, masses in kg, times in s, energies in J, "
+                                "temperatures as energies (k_B = 1: J)"
+                              : "reduced: lengths, masses and energies as given in the scene "
+                                "(k_B = 1)");
 
         YAML::Node obs_summary;
         for (std::size_t k = 0; k < observables.size(); ++k) {

@@ -24,6 +24,16 @@ ParamSpec list_of(ParamType t, std::string name, std::string doc, bool opt = tru
     return s;
 }
 
+ParamSpec gravity_spec() {
+    ParamSpec g = real("gravity", "", "length/time^2",
+                       "uniform gravitational acceleration vector, one component per axis (e.g. "
+                       "[0, -9.81] in SI); parabolic free flight in the event-driven engine");
+    g.type = ParamType::RealList;
+    g.optional = true;
+    g.default_value = "";
+    return g;
+}
+
 Schema top_schema() {
     return {
         optional(text("title", "", "free text describing the scene")),
@@ -43,6 +53,10 @@ Schema top_schema() {
         list_of(ParamType::Map, "engine", "engine and numerical settings (see section engine)"),
         list_of(ParamType::Map, "run", "run schedule (see section run)", false),
         list_of(ParamType::Map, "output", "output settings (see section output)"),
+        gravity_spec(),
+        choice("units", "reduced", {"reduced", "SI"},
+               "unit system the numbers are written in: reduced (lengths, masses and energies as "
+               "given, k_B = 1) or SI (m, kg, s, Hz, J; e.g. McNamara & Falcon 2005)"),
     };
 }
 
@@ -265,6 +279,16 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     if (tp.has("title")) res["title"] = sc.title;
     res["dimension"] = d;
     res["seed"] = sc.seed;
+    sc.units = tp.str("units");
+    res["units"] = sc.units;
+    if (tp.has("gravity")) {
+        const std::vector<double> g = tp.reals("gravity");
+        if (int(g.size()) != d)
+            tp.fail("gravity",
+                    fmt::format("expected {} components (one per axis), got {}", d, g.size()));
+        for (int a = 0; a < d; ++a) sc.engine.gravity[std::size_t(a)] = g[std::size_t(a)];
+        res["gravity"] = g;
+    }
 
     // Species and interactions.
     YAML::Node rs, ri;

@@ -33,6 +33,7 @@ struct Scene {
     std::string file;
     YAML::Node resolved;
     std::string title;
+    std::string units = "reduced";  // or "SI"
     int dimension = 2;
     std::uint64_t seed = 1;
     SpeciesTable species;

@@ -17,6 +17,7 @@ const bool registered = PairLawRegistry::instance().add(PairLaw{
     [](const Params& p, PairCoefficients& c) {
         c.alpha = p.real("alpha");
         c.beta = p.real("beta");
+        c.restitution = constant_impact_restitution(c.alpha);
     }});
 
 }  // namespace

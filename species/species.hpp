@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "libgran/params.hpp"
+#include "species/impact_restitution.hpp"
 
 namespace gran {
 
@@ -24,6 +25,9 @@ struct PairCoefficients {
     std::string law = "constant_restitution";
     double alpha = 1;  // normal restitution, (0, 1]
     double beta = -1;  // tangential restitution, [-1, 1]; -1 = smooth
+    // Normal restitution as a function of the impact speed; `alpha` is its nominal value (used by
+    // kinetic-theory estimates). Constant laws set both.
+    ImpactRestitution restitution = constant_impact_restitution(1.0);
 };
 
 struct SpeciesTable {

@@ -1,37 +1,34 @@
 #pragma once
 // Particle-wall collision rules as plain functions on plain data. `inward` is +1 for a lower wall
 // (the gas lies at larger coordinates) and -1 for an upper wall; v is the particle velocity, `axis`
-// the wall normal. Every rule leaves the particle moving away from the wall (or at rest on it).
+// the wall normal, u the wall's velocity along it. Every rule leaves the particle moving away from
+// the wall (or at rest on it).
 #include <cmath>
 
 #include "libgran/random.hpp"
 #include "libgran/vec.hpp"
+#include "species/impact_restitution.hpp"
 
 namespace gran {
 
 struct WallParams {
-    double restitution = 1;          // normal restitution against the wall
+    // Normal restitution against the wall, possibly a function of the impact speed |v_n - u|
+    // (species/impact_restitution.hpp); elastic by default.
+    ImpactRestitution restitution = constant_impact_restitution(1.0);
     double temperature = 1;          // thermal wall temperature T0 [energy]
-    double velocity = 0;             // sawtooth wall speed v0 [velocity]
     bool redraw_tangential = false;  // thermal wall: also redraw tangential components
 };
 
-// Static wall: v_n' = -e v_n.
+// A wall of infinite mass moving with velocity u along its normal (u = 0: a static wall; a
+// sawtooth wall reports u = inward v0, Barrat & Trizac 2002, Sec. III A; a piston its waveform's
+// velocity, McNamara & Falcon 2005, Sec. II B): the relative normal velocity is reversed and
+// scaled, v_n' - u = -e (v_n - u), with e = e(|v_n - u|). For e = 1 and u = inward v0 this is the
+// sawtooth rule v_n' = 2 u - v_n.
 template <int D>
-inline void static_wall_rule(Vec<D>& v, int axis, double /*inward*/, const WallParams& w,
+inline void impact_wall_rule(Vec<D>& v, int axis, double /*inward*/, double u, const WallParams& w,
                              Rng& /*rng*/, double /*mass*/) {
-    v[axis] = -w.restitution * v[axis];
-}
-
-// Sawtooth vibrating wall (Barrat & Trizac 2002, Sec. III A): an infinitely massive wall met with
-// velocity v0 directed into the gas at a fixed position. Relative normal velocity reversed and
-// scaled by e: v_n' - u = -e (v_n - u) with u = inward * v0, i.e. v_n' = 2 u - v_n for e = 1 (the
-// paper's rule).
-template <int D>
-inline void sawtooth_wall_rule(Vec<D>& v, int axis, double inward, const WallParams& w,
-                               Rng& /*rng*/, double /*mass*/) {
-    const double u = inward * w.velocity;
-    v[axis] = (1.0 + w.restitution) * u - w.restitution * v[axis];
+    const double e = restitution(w.restitution, v[axis] - u);
+    v[axis] = (1.0 + e) * u - e * v[axis];  // exactly 2 u - v_n for e = 1
 }
 
 // Thermal wall at temperature T0 (Barrat & Trizac 2002, Sec. III A; Grossman, Zhou & Ben-Naim
@@ -39,8 +36,8 @@ inline void sawtooth_wall_rule(Vec<D>& v, int axis, double inward, const WallPar
 // / (2 T0)), v > 0, by inversion v = sqrt(-2 T0 ln(1 - U) / m); tangential components are kept (the
 // paper's rule) or redrawn from the Maxwellian at T0.
 template <int D>
-inline void thermal_wall_rule(Vec<D>& v, int axis, double inward, const WallParams& w, Rng& rng,
-                              double mass) {
+inline void thermal_wall_rule(Vec<D>& v, int axis, double inward, double /*u: a static wall*/,
+                              const WallParams& w, Rng& rng, double mass) {
     const double u = uniform01(rng);
     v[axis] = inward * std::sqrt(-2.0 * w.temperature * std::log1p(-u) / mass);
     if (w.redraw_tangential) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "drivers/wall_motion.hpp"
 #include "species/wall_rules.hpp"
 #include "tests/support/run_scene.hpp"
 
@@ -15,11 +16,11 @@ namespace {
 
 TEST(SawtoothWall, LowerWallRuleIsTwiceWallSpeedMinusNormalVelocity) {
     Rng rng = make_rng(1, Stream::Driver);
-    WallParams w;
-    w.velocity = 0.7;
+    const WallParams w;
+    const double u = wall_velocity(WallMotion::sawtooth(0.7), +1, 12.3);
     for (double vy : {-0.1, -1.0, -3.5}) {
         Vec<2> v(0.3, vy);
-        sawtooth_wall_rule<2>(v, 1, +1.0, w, rng, 1.0);
+        impact_wall_rule<2>(v, 1, +1.0, u, w, rng, 1.0);
         EXPECT_EQ(v[1], 2 * 0.7 - vy);  // exactly, as the paper's rule
         EXPECT_EQ(v[0], 0.3);           // tangential untouched
     }
@@ -27,10 +28,10 @@ TEST(SawtoothWall, LowerWallRuleIsTwiceWallSpeedMinusNormalVelocity) {
 
 TEST(SawtoothWall, UpperWallRuleMirrorsTheLowerOne) {
     Rng rng = make_rng(1, Stream::Driver);
-    WallParams w;
-    w.velocity = 0.7;
+    const WallParams w;
+    const double u = wall_velocity(WallMotion::sawtooth(0.7), -1, 0.0);
     Vec<3> v(0.3, 1.2, -0.4);
-    sawtooth_wall_rule<3>(v, 1, -1.0, w, rng, 1.0);
+    impact_wall_rule<3>(v, 1, -1.0, u, w, rng, 1.0);
     EXPECT_EQ(v[1], -2 * 0.7 - 1.2);
     EXPECT_EQ(v[0], 0.3);
     EXPECT_EQ(v[2], -0.4);
@@ -39,10 +40,9 @@ TEST(SawtoothWall, UpperWallRuleMirrorsTheLowerOne) {
 TEST(SawtoothWall, WallRestitutionScalesTheRelativeVelocity) {
     Rng rng = make_rng(1, Stream::Driver);
     WallParams w;
-    w.velocity = 0.5;
-    w.restitution = 0.8;
+    w.restitution = constant_impact_restitution(0.8);
     Vec<2> v(0.0, -2.0);
-    sawtooth_wall_rule<2>(v, 1, +1.0, w, rng, 1.0);
+    impact_wall_rule<2>(v, 1, +1.0, 0.5, w, rng, 1.0);
     EXPECT_NEAR(v[1] - 0.5, -0.8 * (-2.0 - 0.5), 1e-15);
 }
 
@@ -69,7 +69,7 @@ TEST(ThermalWall, OutgoingNormalVelocitiesFollowTheFluxDistribution) {
     std::vector<double> out;
     for (int k = 0; k < 200000; ++k) {
         Vec<2> v(0.4, -1.0);
-        thermal_wall_rule<2>(v, 1, +1.0, w, rng, m);
+        thermal_wall_rule<2>(v, 1, +1.0, 0.0, w, rng, m);
         ASSERT_GT(v[1], 0.0);
         EXPECT_EQ(v[0], 0.4);  // tangential kept
         out.push_back(v[1]);
@@ -88,7 +88,7 @@ TEST(ThermalWall, UpperWallSendsParticlesDownAndCanRedrawTangentialVelocity) {
     const int n = 100000;
     for (int k = 0; k < n; ++k) {
         Vec<3> v(5.0, 1.0, 5.0);
-        thermal_wall_rule<3>(v, 1, -1.0, w, rng, 1.0);
+        thermal_wall_rule<3>(v, 1, -1.0, 0.0, w, rng, 1.0);
         ASSERT_LT(v[1], 0.0);
         sum2 += v[0] * v[0] + v[2] * v[2];
     }

@@ -180,7 +180,7 @@ std::vector<double> profile_of(const std::string& tag, const std::string& name) 
 }
 
 // Measured pressure (kinetic + collisional virial) of elastic disks at packing fraction 0.3 equals
-// the Henderson equation of state, n T (1 + 2 phi chi), in every slab and both components (2%).
+// the Henderson equation of state, n T (1 + 2 phi chi), in every slab and both components.
 TEST(Pressure, MeasuredPressureOfElasticDisksMatchesHendersonEquationOfState) {
     const char* scene = R"(
 dimension: 2
@@ -196,8 +196,17 @@ run: {equilibration: 50, measurement: 500, sample_interval: 1}
     const double phi = 0.3, n = phi / (M_PI / 4), T = 0.999;
     const double chi = (1 - 7 * phi / 16) / ((1 - phi) * (1 - phi));
     const double expected = n * T * (1 + 2 * phi * chi);
-    for (const char* c : {"pressure/P_xx", "pressure/P_yy"}) {
-        for (double p : profile_of("hd", c)) EXPECT_NEAR(p / expected, 1.0, 0.02) << c;
+    // Per slab within 3 standard errors (about 1% each) plus Henderson's own accuracy at this
+    // density (0.5%); the average over slabs within 1%.
+    for (const std::string c : {"pressure/P_xx", "pressure/P_yy"}) {
+        const auto p = profile_of("hd", c);
+        const auto err = profile_of("hd", c + "_error");
+        double mean = 0;
+        for (std::size_t b = 0; b < p.size(); ++b) {
+            EXPECT_NEAR(p[b], expected, 3 * err[b] + 0.005 * expected) << c << " slab " << b;
+            mean += p[b] / double(p.size());
+        }
+        EXPECT_NEAR(mean / expected, 1.0, 0.01) << c;
     }
 }
 

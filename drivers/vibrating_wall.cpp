@@ -1,0 +1,111 @@
+// Vibrating wall of infinite mass with a prescribed waveform (McNamara & Falcon 2005, Sec. II B;
+// Barrat & Trizac 2002, Sec. III A; Bhateja et al. 2016): the piston of two joined parabolas, a
+// sinusoid, or the sawtooth limit. Particle-wall contacts are found exactly
+// (drivers/wall_motion.hpp); the rule is v_n' - u = -e (v_n - u) with u the wall velocity at
+// contact and e constant or a function of |v_n - u|.
+#include <numbers>
+
+#include "drivers/wall_driver.hpp"
+
+namespace gran {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// At t = 0 with phase 0 the wall is at its outermost position (a piston at its lowest).
+WallMotion motion_for(const Params& p, int side) {
+    const std::string wave = p.str("waveform");
+    if (wave == "sawtooth") return WallMotion::sawtooth(p.real("velocity"));
+    if (!p.has("amplitude") || !p.has("frequency")) {
+        p.fail("waveform", "waveform '" + wave + "' needs `amplitude` and `frequency`");
+    }
+    const double a = p.real("amplitude"), f = p.real("frequency"), phase = p.real("phase");
+    if (wave == "two_parabolas") {
+        // wall_motion.hpp: phase 0 is the lowest position (z = -A/2).
+        return WallMotion::parabolic_piston(a, f, side == 0 ? phase : phase + kPi);
+    }
+    // A sin(omega t + phi): outermost at phi = -pi/2 (lower wall) or +pi/2 (upper wall).
+    return WallMotion::sinusoid(a, 2 * kPi * f, side == 0 ? phase - kPi / 2 : phase + kPi / 2);
+}
+
+template <int D>
+class VibratingWall final : public WallDriver<D> {
+  public:
+    VibratingWall(const Params& p, const SceneInfo& info)
+        : WallDriver<D>(p, info, &impact_wall_rule<D>, make(p), "vibrating " + p.str("waveform"),
+                        motion_for(p, 0), motion_for(p, 1)),
+          motion_(motion_for(p, 0)),
+          waveform_(p.str("waveform")) {
+        if (waveform_ == "sawtooth" && !p.has("velocity"))
+            p.fail("waveform", "waveform 'sawtooth' needs `velocity` (v0)");
+        const double v = peak_velocity();
+        if (waveform_ != "sawtooth" && !(v > 0))
+            p.fail("amplitude", "a vibrating wall needs amplitude > 0 and frequency > 0");
+        const double excursion =
+            waveform_ == "two_parabolas" ? p.real("amplitude") : 2 * p.real("amplitude");
+        const double length = info.box_length[std::size_t(this->axis_)];
+        if (waveform_ != "sawtooth" && excursion + info.species->max_diameter() >= length) {
+            p.fail("amplitude", fmt::format("the wall sweeps {:.4g} of the {:.4g}-long axis and "
+                                            "leaves no room for particles",
+                                            excursion, length));
+        }
+    }
+
+    // Maximum wall speed: V = 4 A f for the two parabolas (McNamara & Falcon 2005), A omega for a
+    // sinusoid, v0 for the sawtooth.
+    double peak_velocity() const {
+        if (waveform_ == "sawtooth") return motion_.v0;
+        if (waveform_ == "two_parabolas") return 4 * motion_.amplitude * motion_.omega / (2 * kPi);
+        return motion_.amplitude * motion_.omega;
+    }
+
+    void write(h5::Group& g, YAML::Node& summary) const override {
+        WallDriver<D>::write(g, summary);
+        g.attr("waveform", waveform_);
+        g.write_scalar("peak_velocity", peak_velocity());
+        summary["peak_velocity"] = peak_velocity();
+        if (waveform_ != "sawtooth") {
+            g.write_scalar("frequency", motion_.omega / (2 * kPi));
+            g.write_scalar("amplitude", motion_.amplitude);
+        }
+    }
+
+  private:
+    static WallParams make(const Params& p) {
+        WallParams w;
+        w.restitution = read_wall_restitution(p);
+        return w;
+    }
+    WallMotion motion_;
+    std::string waveform_;
+};
+
+const bool registered = register_plugin<Driver, VibratingWall>(
+    "vibrating_wall",
+    "wall of infinite mass moving with a prescribed waveform: two joined parabolas (McNamara & "
+    "Falcon 2005 piston), sinusoid, or sawtooth",
+    wall_schema(
+        [] {
+            Schema s{
+                choice(
+                    "waveform", "two_parabolas", {"two_parabolas", "sinusoid", "sawtooth"},
+                    "wall motion: two_parabolas z = +-(A/2)((t-t_n)^2/t0^2 - 1), t0 = 1/(4f), peak "
+                    "velocity 4 A f; sinusoid z = A sin(2 pi f t + phi), peak velocity 2 pi f A; "
+                    "sawtooth: fixed position, every particle meets it at speed v0"),
+                optional(
+                    real("amplitude", "", "length",
+                         "A: peak-to-peak excursion for two_parabolas, half of it (A of A sin) "
+                         "for sinusoid",
+                         0, 1e308, true)),
+                optional(real("frequency", "", "1/time", "vibration frequency f", 0, 1e308, true)),
+                real("phase", "0", "rad", "phase; 0: the wall starts at its outermost position",
+                     -1e308, 1e308),
+                optional(
+                    real("velocity", "", "velocity", "sawtooth: wall speed v0", 0, 1e308, true))};
+            for (auto& r : wall_restitution_schema()) s.push_back(r);
+            return s;
+        }(),
+        "lower"));
+
+}  // namespace
+}  // namespace gran
