@@ -39,6 +39,14 @@ std::string yaml_text(const YAML::Node& n) {
     return em.c_str();
 }
 
+// A value as it appears in a run name: lists joined by "x" ([0.2, 0.044] -> 0.2x0.044).
+std::string label_text(const YAML::Node& n) {
+    if (!n.IsSequence()) return yaml_text(n);
+    std::string s;
+    for (std::size_t i = 0; i < n.size(); ++i) s += (i ? "x" : "") + label_text(n[i]);
+    return s;
+}
+
 // File-name safe: letters, digits and . _ + - only.
 std::string safe_name(std::string s) {
     for (char& c : s) {
@@ -104,7 +112,12 @@ StudyFit read_fit(const Where& w, const YAML::Node& n) {
         } else if (k == "y") {
             f.y = require_string(wk, it->second);
         } else if (k == "group_by") {
-            f.group_by = require_string(wk, it->second);
+            if (it->second.IsSequence()) {
+                for (std::size_t i = 0; i < it->second.size(); ++i)
+                    f.group_by.push_back(require_string(wk.item(i), it->second[i]));
+            } else {
+                f.group_by.push_back(require_string(wk, it->second));
+            }
         } else if (k == "tolerance") {
             try {
                 f.tolerance = it->second.as<double>();
@@ -248,11 +261,11 @@ Study load_study(const std::string& path) {
                         const YAML::Node& v = values[rest % values.size()];
                         rest /= values.size();
                         run.overrides.emplace_back(key, yaml_text(v));
-                        name += "_" + last_key(key) + yaml_text(v);
+                        name += "_" + last_key(key) + label_text(v);
                     }
                     for (const auto& [key, values] : zip) {
                         run.overrides.emplace_back(key, yaml_text(values[z]));
-                        name += "_" + last_key(key) + yaml_text(values[z]);
+                        name += "_" + last_key(key) + label_text(values[z]);
                     }
                     if (replicas > 1) {
                         run.replica = r;
@@ -504,12 +517,14 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
 
     // Merge every complete run into one file, plus the summary table and fits.
     const Table table = summary_table(st, summary, have);
-    rep.table = (fs::path(outdir) / "study.csv").string();
+    // Named after the study file: several studies may share one result folder (and its runs).
+    const std::string stem = fs::path(st.file).stem().string();
+    rep.table = (fs::path(outdir) / (stem + ".study.csv")).string();
     write_csv(rep.table, st, table, have);
     const std::vector<FitResult> fits = fit_all(
         st, table.quantities, table.rows, have,
         [&](const StudyFit& f, std::size_t i) { return fit_x(f, st.runs[i], table.rows[i]); });
-    rep.merged = (fs::path(outdir) / "study.h5").string();
+    rep.merged = (fs::path(outdir) / (stem + ".study.h5")).string();
     const std::string part = rep.merged + ".part";
     {
         h5::File f = h5::File::create(part);
@@ -567,7 +582,7 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
     }
     fs::rename(part, rep.merged);
     if (!fits.empty()) {
-        const std::string fits_csv = (fs::path(outdir) / "fits.csv").string();
+        const std::string fits_csv = (fs::path(outdir) / (stem + ".fits.csv")).string();
         write_fits_csv(fits_csv, fits);
         for (const auto& r : fits) {
             if (r.problem.empty())

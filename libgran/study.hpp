@@ -27,9 +27,10 @@ struct StudyRun {
 // natural log).
 struct StudyFit {
     std::string name;
-    std::string x;         // a swept scene key ("drivers.0.velocity") or a summary quantity
-    std::string y;         // a summary quantity ("observables.lid.pressure")
-    std::string group_by;  // optional scene key: one fit per distinct value
+    std::string x;  // a swept scene key ("drivers.0.velocity") or a summary quantity
+    std::string y;  // a summary quantity ("observables.lid.pressure")
+    // Optional scene keys (or `point`, the point's name): one fit per distinct combination.
+    std::vector<std::string> group_by;
     double tolerance = 0.25;
 };
 
@@ -61,8 +62,8 @@ struct StudyReport {
     int reused = 0;
     int failed = 0;
     bool interrupted = false;
-    std::string merged;      // OUTDIR/study.h5
-    std::string table;       // OUTDIR/study.csv
+    std::string merged;      // OUTDIR/<study stem>.study.h5
+    std::string table;       // OUTDIR/<study stem>.study.csv
     int max_concurrent = 0;  // largest number of runs in flight at once
 };
 

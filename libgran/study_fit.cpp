@@ -54,11 +54,30 @@ PowerLawFit fit_power_law(std::span<const double> x, std::span<const double> y, 
 
 namespace {
 
+// "<point>" for the key `point`, else the value the run gives the scene key ("" if none); the
+// group of a run is the "_"-joined list, its label "<last key part><value>" joined.
 std::string group_value(const StudyRun& run, const std::string& key) {
+    if (key == "point") return run.point;
     for (const auto& [k, v] : run.overrides) {
         if (k == key) return v;
     }
     return "";
+}
+
+std::string group_of(const StudyRun& run, const std::vector<std::string>& keys) {
+    std::string g;
+    for (const auto& k : keys) g += (g.empty() ? "" : "|") + group_value(run, k);
+    return g;
+}
+
+std::string group_label(const StudyRun& run, const std::vector<std::string>& keys) {
+    std::string label;
+    for (const auto& k : keys) {
+        const auto dot = k.rfind('.');
+        label += "_" + (k == "point" ? "" : k.substr(dot == std::string::npos ? 0 : dot + 1)) +
+                 group_value(run, k);
+    }
+    return label;
 }
 
 }  // namespace
@@ -73,16 +92,16 @@ std::vector<FitResult> fit_all(const Study& st, const std::vector<std::string>& 
             r.spec = spec;
             r.name = spec.name;
             r.fit = fit_power_law({}, {}, spec.tolerance);
-            r.problem = fmt::format("{}: no run reports the quantity '{}' (study.csv lists them)",
-                                    st.file, spec.y);
+            r.problem = fmt::format(
+                "{}: no run reports the quantity '{}' (the study's .study.csv lists them)", st.file,
+                spec.y);
             out.push_back(std::move(r));
             continue;
         }
         std::vector<std::string> groups;
         for (std::size_t i = 0; i < st.runs.size(); ++i) {
             if (!have[i]) continue;
-            const std::string g =
-                spec.group_by.empty() ? "" : group_value(st.runs[i], spec.group_by);
+            const std::string g = group_of(st.runs[i], spec.group_by);
             if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
         }
         for (const auto& g : groups) {
@@ -90,13 +109,10 @@ std::vector<FitResult> fit_all(const Study& st, const std::vector<std::string>& 
             r.spec = spec;
             r.group = g;
             r.name = spec.name;
-            if (!spec.group_by.empty()) {
-                const auto dot = spec.group_by.rfind('.');
-                r.name += "_" + spec.group_by.substr(dot == std::string::npos ? 0 : dot + 1) + g;
-            }
             for (std::size_t i = 0; i < st.runs.size(); ++i) {
                 if (!have[i]) continue;
-                if (!spec.group_by.empty() && group_value(st.runs[i], spec.group_by) != g) continue;
+                if (group_of(st.runs[i], spec.group_by) != g) continue;
+                if (r.x.empty()) r.name = spec.name + group_label(st.runs[i], spec.group_by);
                 auto it = rows[i].find(spec.y);
                 if (it == rows[i].end()) continue;
                 r.x.push_back(x_of(spec, i));

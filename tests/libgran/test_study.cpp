@@ -116,7 +116,7 @@ TEST_F(Study, FourPointSweepRunsTwoAtATimeMergesAndResumeRecomputesNothing) {
               std::string::npos)
         << first.output;
     {
-        gran::h5::File f = gran::h5::File::open_read(out + "/study.h5");
+        gran::h5::File f = gran::h5::File::open_read(out + "/study.study.h5");
         const gran::h5::Group r = f.root();
         EXPECT_EQ(r.read_int64s("performance/max_concurrent_runs").at(0), 2);
         const auto t =
