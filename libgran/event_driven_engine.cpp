@@ -433,9 +433,10 @@ double EventDrivenEngine<D>::axis_event(std::uint32_t i, int a, double best, std
             if (side == 0 ? v >= 0.0 : v <= 0.0) continue;
             t = std::max(((side == 0 ? radius : box_.length[a] - radius) - x) / v, 0.0);
         } else {
-            const double abs_t = next_wall_contact(wall.motion, wall.base, side == 0 ? 1 : -1, x, v,
-                                                   ga, radius, now_, now_ + horizon);
-            t = abs_t - now_;
+            const double abs_t =
+                next_wall_contact(wall.motion, wall.base, side == 0 ? 1 : -1, x, v, ga, radius,
+                                  t_origin_ + now_, t_origin_ + now_ + horizon);
+            t = abs_t - (t_origin_ + now_);
         }
         if (t < t_best) {
             t_best = t;
@@ -470,7 +471,7 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
     }
     CollisionRecord<D> rec;
     if (sink_) {
-        rec.time = now_;
+        rec.time = t_origin_ + now_;
         rec.i = id_[i];
         rec.j = id_[j];
         rec.si = si;
@@ -546,7 +547,8 @@ void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
     const double inward = side ? -1.0 : 1.0;
     const WallSlot& w = walls_[std::size_t(code)];
     const double m = mass_[p_.species[i]];
-    const double u = wall_velocity(w.motion, side ? -1 : 1, now_);
+    const double t_abs = t_origin_ + now_;  // wall motions are functions of absolute time
+    const double u = wall_velocity(w.motion, side ? -1 : 1, t_abs);
     const double before = p_.v[i][a];
     // Only a particle still moving into the wall (relative to it) is reflected.
     if (inward * (before - u) < 0.0) {
@@ -567,7 +569,7 @@ void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
         // slower than acc * tc would come back within 2 tc, and at zero speed the same contact
         // would repeat at the same time. The rebound is raised to acc * tc, so a particle resting
         // on a floor makes micro-bounces of period 2 tc (documented in docs/physics.md).
-        const double acc_in = -inward * (g_[a] - w.motion.acceleration(now_));
+        const double acc_in = -inward * (g_[a] - w.motion.acceleration(t_abs));
         if (acc_in > 0.0) {
             const double lift = acc_in * std::max(settings_.tc, 1e-300);
             if (inward * (p_.v[i][a] - u) < lift) {
@@ -619,8 +621,11 @@ void EventDrivenEngine<D>::set_wall(int axis, int side, WallRule rule, const Wal
 template <int D>
 typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
     double t_limit, std::uint64_t collision_limit, const std::atomic<bool>* interrupt) {
+    // Internal times are relative to t_origin_ (see rebase_time()).
+    double limit = t_limit - t_origin_;
     if (p_.size() == 0) {
-        now_ = t_limit;
+        now_ = limit;
+        limit_now_ = t_limit;
         return Stop::TimeLimit;
     }
     // The flag is read on entry (runs made of many short advances, e.g. frequent thermostat
@@ -633,19 +638,23 @@ typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
         }
         if (events_since_sort_ >= sort_every_) {
             // Between events the state is consistent: re-sort, then rebuild the queue.
+            rebase_time();
+            limit = t_limit - t_origin_;
             sort_by_cell();
             events_since_sort_ = 0;
             queue_.reset(p_.size());
             queue_.rebuild([this](std::uint32_t k) { return ev_time_[k]; });
         }
         const double te = queue_.top_time();
-        if (te > t_limit) {
-            now_ = t_limit;
+        if (te > limit) {
+            now_ = limit;
+            limit_now_ = t_limit;  // now() reports the limit exactly
             return Stop::TimeLimit;
         }
         if (te >= 1e299) return Stop::NoEvents;
         const std::uint32_t i = queue_.top();
         now_ = te;
+        limit_now_ = kNoLimit;
         ++counters_.events;
         ++events_since_sort_;
         switch (ev_kind_[i]) {
@@ -675,6 +684,25 @@ typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
                 break;
         }
     }
+}
+
+template <int D>
+void EventDrivenEngine<D>::rebase_time() {
+    // Times are kept relative to an origin moved to the present now and then, so that relative
+    // times stay small and keep their precision in long runs (absolute times near 1e6 would leave
+    // position errors near 1e-10 diameters, and overlap-repair collisions).
+    synchronize();
+    const double shift = now_;
+    if (shift == 0.0) return;
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+        p_.t[i] = 0.0;
+        ev_time_[i] -= shift;
+        coll_time_[i] -= shift;
+        last_collision_[i] -= shift;
+    }
+    t_origin_ += shift;
+    now_ = 0.0;
+    queue_.rebuild([this](std::uint32_t k) { return ev_time_[k]; });
 }
 
 template <int D>

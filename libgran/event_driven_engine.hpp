@@ -84,7 +84,7 @@ class EventDrivenEngine {
     Stop advance(double t_limit, std::uint64_t collision_limit,
                  const std::atomic<bool>* interrupt = nullptr);
 
-    double now() const { return now_; }
+    double now() const { return limit_now_ == kNoLimit ? t_origin_ + now_ : limit_now_; }
     const Particles<D>& particles() const { return p_; }
     const Box<D>& box() const { return box_; }
     double species_mass(std::uint32_t s) const { return mass_[s]; }
@@ -168,7 +168,11 @@ class EventDrivenEngine {
     Particles<D> p_;
     EngineSettings settings_;
     EngineCounters counters_;
-    double now_ = 0;
+    double now_ = 0;       // relative to t_origin_
+    double t_origin_ = 0;  // absolute time of the internal origin (moved by rebase_time())
+    static constexpr double kNoLimit = -1.0;
+    double limit_now_ = kNoLimit;  // after a time-limit stop: the limit, reported exactly
+    void rebase_time();
 
     // species tables, flattened
     std::size_t ns_ = 0;

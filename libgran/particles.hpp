@@ -19,7 +19,6 @@ struct Particles {
 
     std::size_t size() const { return r.size(); }
     bool rotating() const { return !w.empty(); }
-    Vec<D> position_at(std::size_t i, double time) const { return r[i] + v[i] * (time - t[i]); }
     void resize(std::size_t n, bool with_rotation) {
         r.assign(n, Vec<D>::Zero());
         v.assign(n, Vec<D>::Zero());

@@ -14,6 +14,8 @@
 
 namespace gran {
 
+// At a sample every particle is brought to ctx.time (positions and velocities current): read
+// particles().r and .v directly. (Per-particle clocks are internal, relative to a moving origin.)
 template <int D>
 struct SampleContext {
     double time = 0;

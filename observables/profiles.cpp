@@ -100,7 +100,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         ++samples_in_block_[block];
         const double lo = 0.5 * (1 - window_) * length_, hi = 0.5 * (1 + window_) * length_;
         for (std::size_t i = 0; i < p.size(); ++i) {
-            double y = p.position_at(i, ctx.time)[axis_];
+            double y = p.r[i][axis_];
             y -= length_ * std::floor(y / length_);  // periodic images (bounded axes stay inside)
             const auto bin =
                 std::min(bins_ - 1, static_cast<std::size_t>(y / length_ * double(bins_)));

@@ -44,7 +44,7 @@ class SlabVelocityPdf final : public Observable<D> {
             nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
         ++samples_;
         for (std::size_t i = 0; i < p.size(); ++i) {
-            double y = p.position_at(i, ctx.time)[axis_];
+            double y = p.r[i][axis_];
             y = y / length_ - std::floor(y / length_);
             for (std::size_t k = 0; k < centres_.size(); ++k) {
                 if (std::abs(y - centres_[k]) >= 0.5 * width_) continue;

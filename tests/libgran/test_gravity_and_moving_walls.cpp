@@ -218,3 +218,44 @@ TEST(ImpactRestitution, EngineAppliesMcNamaraFalconLawAtTheImpactSpeed) {
 
 }  // namespace
 }  // namespace gran
+
+namespace gran {
+namespace {
+
+TEST(MovingWall, ManyParticlesStayAboveThePistonAcrossTimeOriginShifts) {
+    // 300 disks above a two-parabola piston under gravity, advanced in many short steps: the
+    // engine moves its time origin every 16 N events; the stop time, the piston phase and every
+    // particle position must stay consistent (a stale limit once ran far past the stop time).
+    const SpeciesTable t = one_species(300, 0.9);
+    Box<2> box = column(100, 24);
+    Rng rng = make_rng(3, Stream::Placement);
+    Box<2> lower = box;
+    lower.length[1] = 12;  // start in the lower half, above the piston's sweep
+    Particles<2> p = place_random<2>(lower, t, rng);
+    for (auto& r : p.r) r[1] += 8;
+    EventDrivenEngine<2> e(box, t, std::move(p), with_gravity(1.0));
+    Rng wr = make_rng(3, Stream::Driver);
+    const WallMotion piston = WallMotion::parabolic_piston(6.0, 0.25);
+    e.set_wall(1, 0, &impact_wall_rule<2>, WallParams{}, &wr, piston);
+    std::uint64_t sorts = 0;
+    for (int k = 1; k <= 400; ++k) {
+        const double t_stop = 0.1 * k;
+        // A generous collision budget turns a run-away (a stop time never reached) into a failure.
+        const auto stop = e.advance(t_stop, e.counters().collisions + 2000000);
+        ASSERT_EQ(stop, EventDrivenEngine<2>::Stop::TimeLimit) << "at t = " << t_stop;
+        ASSERT_EQ(e.now(), t_stop);
+        e.synchronize();
+        const double floor = e.wall_position(2, t_stop);
+        for (std::size_t i = 0; i < e.particles().size(); ++i) {
+            const double y = e.particles().r[i][1];
+            ASSERT_GE(y - 0.5 - floor, -1e-9) << "particle below the piston at t = " << t_stop;
+            ASSERT_LE(y, 24 - 0.5 + 1e-9);
+        }
+        sorts = e.counters().sorts;
+    }
+    EXPECT_GT(sorts, 5u);  // several origin shifts happened
+    EXPECT_GT(e.wall_hits()[2], 1000u);
+}
+
+}  // namespace
+}  // namespace gran
