@@ -10,7 +10,8 @@ DEB_PACKAGES := cmake g++ ninja-build pkg-config libeigen3-dev libboost-dev libh
 GRAN_WERROR ?= $(if $(CI),ON,OFF)
 CMAKE_FLAGS ?=
 
-.PHONY: deps configure build demo test validate bench format sanitize clean reproduce-barrat-trizac-2002
+.PHONY: deps configure build demo test validate bench format sanitize clean reproduce-barrat-trizac-2002 \
+  reproduce-mcnamara-falcon-2005
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \
@@ -44,10 +45,27 @@ bench: build
 	@mkdir -p results
 	$(BUILD_DIR)/gran_bench --csv results/bench.csv
 
-# Barrat & Trizac 2002, Tables I-II (12 runs, both cores; completed runs are reused).
+# Barrat & Trizac 2002: Tables I-II and Figs. 1-4, 6-9, 13-17 (36 runs on all cores, about 8 min
+# on 2 cores; completed runs are reused). Writes results/barrat-trizac-2002/{figN,tables}.png,
+# comparison.csv (paper vs measured) and claims.csv (the paper's qualitative statements, checked).
+BT2002_STUDIES := tables monodisperse mixture
+BT2002_OUT ?= results/barrat-trizac-2002
 reproduce-barrat-trizac-2002: build
-	$(PY) studies/run_study.py studies/barrat-trizac-2002/tables.yaml -o results/barrat-trizac-2002 --gran $(BUILD_DIR)/gran
-	$(PY) studies/barrat-trizac-2002/compare.py results/barrat-trizac-2002
+	for s in $(BT2002_STUDIES); do \
+	  $(BUILD_DIR)/gran study studies/barrat-trizac-2002/$$s.yaml -o $(BT2002_OUT) || exit 1; \
+	done
+	$(PY) studies/barrat-trizac-2002/figures.py $(BT2002_OUT)
+
+# McNamara & Falcon 2005: Figs. 1-4 (sweep.yaml: 440 runs, about 3 CPU minutes, so about 1.5 min
+# on two free cores; snapshots.yaml: 2 runs, about 1 s; completed runs are reused, then about
+# 5 s). Writes results/mcnamara-falcon-2005/fig{1,2,3,4}.png and comparison.csv (paper vs measured).
+MF2005_STUDIES := sweep snapshots
+MF2005_OUT ?= results/mcnamara-falcon-2005
+reproduce-mcnamara-falcon-2005: build
+	for s in $(MF2005_STUDIES); do \
+	  $(BUILD_DIR)/gran study studies/mcnamara-falcon-2005/$$s.yaml -o $(MF2005_OUT) || exit 1; \
+	done
+	$(PY) studies/mcnamara-falcon-2005/figures.py $(MF2005_OUT)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

@@ -1,8 +1,10 @@
 #!/usr/bin/python3
-"""Compare the Barrat & Trizac 2002 study results with the paper's tables.
+"""Compare the Barrat & Trizac 2002 study results with the paper's Tables I and II.
 
 Usage: /usr/bin/python3 studies/barrat-trizac-2002/compare.py [RESULTS_DIR]
-Writes RESULTS_DIR/comparison.csv (quantity,paper,measured,error) and RESULTS_DIR/tables.png.
+Writes RESULTS_DIR/comparison.csv (quantity,paper,measured,error; table rows only) and
+RESULTS_DIR/tables.png. figures.py calls the same functions and rewrites comparison.csv with the
+rows of the figures added (`make reproduce-barrat-trizac-2002` runs figures.py).
 """
 import csv
 import sys
@@ -16,23 +18,34 @@ import matplotlib.pyplot as plt  # noqa: E402
 import yaml  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
+HEADER = ["quantity", "paper", "measured", "error"]
 
 
-def main():
-    outdir = Path(sys.argv[1] if len(sys.argv) > 1 else "results/barrat-trizac-2002")
+def table_rows(outdir):
+    """(quantity, paper, measured, error) for every paper value of tables.yaml."""
     study = yaml.safe_load((HERE / "tables.yaml").read_text())
     rows = []
     for point in study["points"]:
-        with h5py.File(outdir / f"{point['name']}.h5", "r") as f:
+        with h5py.File(Path(outdir) / f"{point['name']}.h5", "r") as f:
             g = f["observables/profiles/middle/ratios/light_over_heavy"]
             for key, paper in point["paper"].items():
                 d = g[key]
-                rows.append((f"{point['name']}_{key}", paper, float(d[()]), float(d.attrs["error"])))
-    with open(outdir / "comparison.csv", "w", newline="") as f:
+                rows.append((f"{point['name']}_{key}", paper, float(d[()]),
+                             float(d.attrs["error"])))
+    return rows
+
+
+def write_csv(rows, path):
+    """Write comparison rows (quantity, paper, measured, error) to a CSV file, replacing it."""
+    with open(path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["quantity", "paper", "measured", "error"])
+        w.writerow(HEADER)
         for q, p, m, e in rows:
             w.writerow([q, p, f"{m:.4f}", f"{e:.4f}"])
+
+
+def plot_tables(rows, path):
+    """Measured against published gamma, gamma_x, gamma_rot (Tables I-II) as a PNG."""
     fig, ax = plt.subplots(figsize=(5, 5))
     for marker, key in (("o", "_gamma"), ("s", "_gamma_x"), ("^", "_gamma_rot")):
         sel = [r for r in rows if r[0].endswith(key)]
@@ -44,7 +57,15 @@ def main():
     ax.set_ylabel("gran, middle of the cell")
     ax.legend()
     fig.tight_layout()
-    fig.savefig(outdir / "tables.png", dpi=120)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main():
+    outdir = Path(sys.argv[1] if len(sys.argv) > 1 else "results/barrat-trizac-2002")
+    rows = table_rows(outdir)
+    write_csv(rows, outdir / "comparison.csv")
+    plot_tables(rows, outdir / "tables.png")
     worst = max(abs(m - p) for _, p, m, _ in rows)
     print(f"{len(rows)} rows, largest |measured - paper| = {worst:.3f}; "
           f"{outdir / 'comparison.csv'}, {outdir / 'tables.png'}")
