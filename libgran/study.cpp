@@ -478,7 +478,15 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
         }
         while (!stop && next < todo.size() && int(running.size()) < jobs) {
             const std::size_t i = todo[next++];
-            const pid_t pid = spawn_run(opt.gran_binary, st.scene, out[i], st.runs[i], log[i]);
+            pid_t pid = -1;
+            try {
+                pid = spawn_run(opt.gran_binary, st.scene, out[i], st.runs[i], log[i]);
+            } catch (const std::exception& e) {
+                // E.g. the binary is being rebuilt: this run fails, the others go on.
+                ++rep.failed;
+                spdlog::error("{}: {}", st.runs[i].name, e.what());
+                continue;
+            }
             running[pid] = {i, Clock::now()};
             rep.max_concurrent = std::max(rep.max_concurrent, int(running.size()));
         }

@@ -2,8 +2,8 @@
 // and rotation component (the single component w_z in 2D, x, y, z in 3D), the rescaled P(c_w) with
 // c_w = w_a / sqrt(T_rot,s / I_s), T_rot,s the instantaneous rotational temperature per degree of
 // freedom of the species and I_s its moment of inertia; error bars from blocks of the measurement,
-// kurtosis <c^4>/<c^2>^2 (3 for a Gaussian) with a jackknife error. Needs angular velocities (some
-// pair with beta != -1); refused otherwise.
+// kurtosis <c^4>/<c^2>^2 (3 for a Gaussian) with a jackknife error. Smooth particles have no
+// angular velocities: the observable then records only that (so studies may sweep beta to -1).
 #include <boost/histogram.hpp>
 #include <cmath>
 #include <vector>
@@ -24,10 +24,6 @@ class AngularVelocityPdf final : public Observable<D> {
           bins_(static_cast<unsigned>(p.integer("bins"))),
           range_(p.real("range")),
           nblocks_(static_cast<std::size_t>(p.integer("blocks"))) {
-        if (!table_.rough()) {
-            p.fail("", "angular velocities exist only when some pair has beta != -1 (rough "
-                       "particles); this scene has smooth particles only");
-        }
         namespace bh = boost::histogram;
         per_.resize(table_.size());
         for (auto& s : per_) {
@@ -49,7 +45,7 @@ class AngularVelocityPdf final : public Observable<D> {
     }
 
     void sample(const SampleContext<D>& ctx) override {
-        if (!ctx.measuring) return;
+        if (!ctx.measuring || !table_.rough()) return;
         const auto& p = ctx.engine.particles();
         const std::size_t ns = table_.size();
         const std::size_t block = std::min(
@@ -81,6 +77,11 @@ class AngularVelocityPdf final : public Observable<D> {
     }
 
     void write(h5::Group& g, YAML::Node& summary) const override {
+        if (!table_.rough()) {
+            g.attr("note", "smooth particles (every beta = -1): no angular velocities");
+            summary["note"] = "smooth particles: no angular velocities";
+            return;
+        }
         if (samples_ == 0) return;
         for (std::size_t s = 0; s < table_.size(); ++s) {
             const std::string name = table_.species[s].name;
