@@ -26,10 +26,14 @@
 #include <utility>
 #include <vector>
 
+#include "bench/bench_clock.hpp"
 #include "libgran/event_driven_engine.hpp"
 #include "libgran/placement.hpp"
 
 namespace {
+
+using gran::bench::cpu_seconds;
+using gran::bench::wall_seconds;
 
 using namespace gran;
 
@@ -66,17 +70,6 @@ struct Result {
     double events_per_s() const { return double(delta.events) / cpu_s; }
     double per_collision(std::uint64_t x) const { return double(x) / double(collisions); }
 };
-
-double cpu_seconds() {
-    timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-double wall_seconds() {
-    using Clock = std::chrono::steady_clock;
-    return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
-}
 
 SpeciesTable monodisperse(std::size_t n) {
     SpeciesTable t;

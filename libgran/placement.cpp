@@ -208,6 +208,25 @@ void maxwellian_velocities(Particles<D>& p, const SpeciesTable& table, double T,
 }
 
 template double packing_fraction<2>(const Box<2>&, const SpeciesTable&);
+Particles<3> vibrated_bed_lattice(std::size_t n, double width, double z0, std::uint64_t seed) {
+    Particles<3> p;
+    p.resize(n, false);
+    const auto per_row = static_cast<std::size_t>(std::floor(width / 1.2));
+    const double spacing = width / double(per_row);
+    Rng rng = make_rng(seed, Stream::Placement);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t layer = i / (per_row * per_row), k = i % (per_row * per_row);
+        p.r[i] = Vec<3>((double(k % per_row) + 0.5) * spacing,
+                        (double(k / per_row) + 0.5) * spacing, z0 + 1.2 * double(layer));
+        for (int a = 0; a < 3; ++a) p.v[i][a] = 0.1 * (uniform01(rng) - 0.5);
+    }
+    // No centre-of-mass motion: a frictionless floor could not stop a horizontal drift.
+    Vec<3> mean = Vec<3>::Zero();
+    for (const auto& v : p.v) mean += v / double(n);
+    for (auto& v : p.v) v -= mean;
+    return p;
+}
+
 template double packing_fraction<3>(const Box<3>&, const SpeciesTable&);
 template Particles<2> place_random<2>(const Box<2>&, const SpeciesTable&, Rng&, std::size_t);
 template Particles<3> place_random<3>(const Box<3>&, const SpeciesTable&, Rng&, std::size_t);

@@ -36,4 +36,9 @@ Particles<D> place_lattice(const Box<D>& box, const SpeciesTable& table, Rng& rn
 template <int D>
 void maxwellian_velocities(Particles<D>& p, const SpeciesTable& table, double T, Rng& rng);
 
+// A vibrated-bed start (tests and benchmarks of the DEM engine): n grains of diameter 1 on a square
+// lattice of spacing 1.2 filling a periodic 3D column of width `width` layer by layer from height
+// z0, with small random velocities (uniform in +-0.05) and no centre-of-mass motion.
+Particles<3> vibrated_bed_lattice(std::size_t n, double width, double z0, std::uint64_t seed);
+
 }  // namespace gran

@@ -16,6 +16,16 @@ using AngVec = std::conditional_t<D == 2, double, Eigen::Vector3d>;
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// Zero angular velocity (a scalar in 2D, a 3-vector in 3D).
+template <int D>
+inline AngVec<D> ang_zero() {
+    if constexpr (D == 2) {
+        return 0.0;
+    } else {
+        return Eigen::Vector3d::Zero();
+    }
+}
+
 template <int D>
 inline double ang_squared(const AngVec<D>& w) {
     if constexpr (D == 2) {

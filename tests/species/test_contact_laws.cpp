@@ -20,15 +20,6 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 template <int D>
-AngVec<D> ang_zero() {
-    if constexpr (D == 2) {
-        return 0.0;
-    } else {
-        return Eigen::Vector3d::Zero();
-    }
-}
-
-template <int D>
 Vec<D> unit(int axis) {
     Vec<D> e = Vec<D>::Zero();
     e[axis] = 1;
