@@ -177,7 +177,7 @@ Study load_study(const std::string& path) {
     for (auto it = root.begin(); it != root.end(); ++it) {
         const std::string k = it->first.as<std::string>();
         const Where w = top.child(k);
-        const YAML::Node& v = it->second;
+        const YAML::Node v = it->second;  // a copy: it->second is a temporary proxy
         if (k == "scene") {
             st.scene = (fs::path(path).parent_path() / require_string(w, v)).lexically_normal();
             if (!fs::exists(st.scene)) fail(w, v, "no scene file '" + st.scene + "'");
