@@ -1,0 +1,152 @@
+// Physics check of the LAMMPS comparison (bench/lammps/README.md): gran's DEM benchmark case
+// (bench/bench_dem.cpp: same species, contact table, box, lattice, floor and warm-up) with the
+// observables that vibrated_bed.in prints in its "-var sample K" mode, so the two codes can be
+// compared on the same numbers:
+//   contacts/N  2 x (particle-particle contacts) / N
+//   T_z         variance of v_z over the grains
+//   <z>         mean height of the grains
+// each printed after the warm-up (one snapshot), averaged every K steps over the run that follows
+// (the benchmark's timed part), and at its end. Not a benchmark: nothing is timed.
+//
+//   gran_lammps_observables [--N 1600] [--warmup-periods 2] [--psteps 2e7] [--steps S] [--W 9]
+//                           [--sample K]
+//
+// Not part of the CMake build; bench/lammps/README.md gives the compile line.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <string>
+
+#include "libgran/dem_engine.hpp"
+#include "libgran/placement.hpp"
+
+using namespace gran;
+
+namespace {
+
+struct Observables {
+    double contacts = 0, tz = 0, zmean = 0;
+};
+
+Observables measure(const DemEngine<3>& e) {
+    const auto& p = e.particles();
+    const double n = double(p.size());
+    Observables o;
+    double vz = 0, vz2 = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        vz += p.v[i][2] / n;
+        vz2 += p.v[i][2] * p.v[i][2] / n;
+        o.zmean += p.r[i][2] / n;
+    }
+    o.tz = vz2 - vz * vz;
+    o.contacts = 2.0 * double(e.counters().active_contacts) / n;
+    return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::size_t n = 1600;
+    double warmup_periods = 2, psteps = 2e7, W = 9;
+    std::uint64_t steps = 0, sample = 10;
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string a = argv[i];
+        const char* v = argv[i + 1];
+        if (a == "--N") {
+            n = std::stoul(v);
+        } else if (a == "--warmup-periods") {
+            warmup_periods = std::stod(v);
+        } else if (a == "--psteps") {
+            psteps = std::stod(v);
+        } else if (a == "--steps") {
+            steps = std::stoull(v);
+        } else if (a == "--W") {
+            W = std::stod(v);
+        } else if (a == "--sample") {
+            sample = std::max<std::uint64_t>(1, std::stoull(v));
+        } else {
+            std::fprintf(stderr, "unknown option %s\n", a.c_str());
+            return 2;
+        }
+    }
+    if (argc % 2 == 0) {
+        std::fprintf(stderr,
+                     "usage: %s [--N n] [--warmup-periods P] [--psteps X] [--steps S] [--W W] "
+                     "[--sample K]\n",
+                     argv[0]);
+        return 2;
+    }
+
+    // bench/bench_dem.cpp, verbatim in substance.
+    const double A = 1, period = 2 * std::numbers::pi / 3.0;
+    const double omega = std::sqrt(W);
+    const double width = 5.0 * std::sqrt(double(n) / 100.0);
+    SpeciesTable table;
+    Species s;
+    s.name = "grain";
+    s.count = n;
+    s.inertia_factor = 0.4;
+    table.species.push_back(s);
+    table.pairs.assign(1, PairCoefficients{});
+    DemContactSpec spec;
+    spec.k_n = 2e5;
+    spec.e = 0.9;
+    spec.mu = 0.4;
+    spec.gamma_t = 20;
+    const DemContactTable contacts(table, DemLaw::linear_dashpot, spec);
+    Box<3> box;
+    box.length = Vec<3>(width, width, 80);
+    box.periodic = {true, true, false};
+    DemSettings settings;
+    settings.gravity = {0, 0, -1};
+    DemEngine<3> e(box, table, contacts, vibrated_bed_lattice(n, width, 3.0, 1), settings);
+    e.remove_wall(2, 1);
+    if (W > 0) e.set_wall(2, 0, WallMotion::sinusoid(A, omega));
+    e.advance(warmup_periods * period);
+    const std::uint64_t warm_steps = e.counters().steps;
+    const std::uint64_t warm_rebuilds = e.counters().rebuilds;
+
+    const auto& pair = e.contact_table().pair(0, 0);
+    const auto& wall = e.contact_table().wall(0);
+    std::printf(
+        "gran: N %zu width %.6g dt %.15g t_c %.15g c_n %.15g (wall %.15g) c_t %.6g (wall %.6g)\n",
+        n, width, e.dt(), pair.duration, pair.gamma_n, wall.gamma_n, pair.gamma_t, wall.gamma_t);
+    Observables o = measure(e);
+    std::printf(
+        "gran: after a warm-up of %llu steps: contacts/N %.4f T_z %.4f <z> %.4f (rebuilds/step "
+        "%.4f)\n",
+        static_cast<unsigned long long>(warm_steps), o.contacts, o.tz, o.zmean,
+        double(warm_rebuilds) / double(warm_steps));
+
+    if (steps == 0) {
+        steps = static_cast<std::uint64_t>(std::max(1000.0, std::ceil(psteps / double(n))));
+    }
+    steps = sample * ((steps + sample - 1) / sample);  // as vibrated_bed.in's sample mode
+    Observables sum;
+    std::uint64_t samples = 0;
+    const std::uint64_t rebuilds0 = e.counters().rebuilds;
+    for (std::uint64_t k = 1; k <= steps; ++k) {
+        e.step();
+        if (k % sample == 0) {
+            o = measure(e);
+            sum.contacts += o.contacts;
+            sum.tz += o.tz;
+            sum.zmean += o.zmean;
+            ++samples;
+        }
+    }
+    const double m = double(samples);
+    std::printf(
+        "gran: timed-run averages every %llu steps: contacts/N %.4f T_z %.4f <z> %.4f (rebuilds/step "
+        "%.4f)\n",
+        static_cast<unsigned long long>(sample), sum.contacts / m, sum.tz / m, sum.zmean / m,
+        double(e.counters().rebuilds - rebuilds0) / double(steps));
+    o = measure(e);
+    std::printf(
+        "gran: timed %llu steps with %zu grains; at the end: contacts/N %.4f T_z %.4f <z> %.4f\n",
+        static_cast<unsigned long long>(steps), n, o.contacts, o.tz, o.zmean);
+    return 0;
+}
