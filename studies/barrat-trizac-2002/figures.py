@@ -19,6 +19,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(1, str(Path(__file__).resolve().parents[1]))
+from figure_style import label, save  # noqa: E402
 import claims  # noqa: E402
 import compare  # noqa: E402
 from analysis import (Results, cutoff_exponent, mono, second_moment,  # noqa: E402
@@ -70,24 +72,6 @@ def gaussian(ax, lo=-5, hi=5, fmt="k-"):
     """The unit-variance Gaussian P(c) = exp(-c^2/2)/sqrt(2 pi)."""
     c = np.linspace(lo, hi, 400)
     ax.plot(c, np.exp(-c**2 / 2) / np.sqrt(2 * np.pi), fmt, lw=1, label=GAUSS)
-
-
-def label(ax, xlabel, ylabel, title=None, legend=True, **legend_kw):
-    """Axis labels, optional panel title and legend."""
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(ylabel)
-    if title:
-        ax.set_title(title, fontsize=10)
-    if legend:
-        ax.legend(**({"fontsize": 8} | legend_kw))
-
-
-def save(fig, outdir, name, suptitle):
-    """Title, layout and PNG file `name`.png in outdir."""
-    fig.suptitle(suptitle, fontsize=11)
-    fig.tight_layout()
-    fig.savefig(Path(outdir) / f"{name}.png", dpi=120)
-    plt.close(fig)
 
 
 Y_L = "$y/L$"

@@ -22,6 +22,8 @@ from matplotlib.collections import EllipseCollection  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(1, str(Path(__file__).resolve().parents[1]))
+from figure_style import label, save  # noqa: E402
 from analysis import (CASES, QUANTITIES, Snapshot, Sweep, mean_and_error,  # noqa: E402
                       restitution)
 
@@ -39,24 +41,6 @@ FIG4_PANELS = (("g0_r0.95", "(a) r = 0.95, g = 0"), ("g0_rv", "(b) r = r(v), g =
 
 
 # --- plotting helpers ------------------------------------------------------------------------
-
-def label(ax, xlabel, ylabel, title=None, legend=True, **legend_kw):
-    """Axis labels, optional panel title and legend."""
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(ylabel)
-    if title:
-        ax.set_title(title, fontsize=10)
-    if legend:
-        ax.legend(**({"fontsize": 7} | legend_kw))
-
-
-def save(fig, outdir, name, suptitle):
-    """Title, layout and PNG file `name`.png in outdir."""
-    fig.suptitle(suptitle, fontsize=11)
-    fig.tight_layout()
-    fig.savefig(Path(outdir) / f"{name}.png", dpi=120)
-    plt.close(fig)
-
 
 # --- Fig. 1: the restitution law ---------------------------------------------------------------
 
