@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "bench/bench_clock.hpp"
+#include "bench/vibrated_bed.hpp"
 #include "libgran/dem_engine.hpp"
 #include "libgran/placement.hpp"
 #include "libgran/random.hpp"
@@ -35,6 +36,7 @@ namespace {
 
 using gran::bench::cpu_seconds;
 using gran::bench::wall_seconds;
+using namespace gran::bench;
 
 using namespace gran;
 
@@ -76,33 +78,14 @@ Options parse(int argc, char** argv) {
 
 int main(int argc, char** argv) {
     const Options opt = parse(argc, argv);
-    const double A = 1, period = 2 * std::numbers::pi / 3.0;  // of the W = 9 drive
-    const double omega = std::sqrt(opt.W);                    // W = (A omega)^2, A = d = g = 1
+    const double period = kBedPeriod;
     std::printf("%8s %6s %10s %14s %14s %10s %10s %8s %10s\n", "N", "width", "steps",
                 "psteps/s_cpu", "psteps/s_wall", "rebuild/st", "contacts/N", "T_z", "max_ovl");
     for (std::size_t n : opt.sizes) {
-        const double width = 5.0 * std::sqrt(double(n) / 100.0);  // 4 grains per d^2: 4 layers
-        SpeciesTable table;
-        Species s;
-        s.name = "grain";
-        s.count = n;
-        s.inertia_factor = 0.4;
-        table.species.push_back(s);
-        table.pairs.assign(1, PairCoefficients{});
-        DemContactSpec spec;
-        spec.k_n = 2e5;  // m g / d
-        spec.e = 0.9;
-        spec.mu = 0.4;
-        spec.gamma_t = 20;
-        const DemContactTable contacts(table, DemLaw::linear_dashpot, spec);
-        Box<3> box;
-        box.length = Vec<3>(width, width, 80);
-        box.periodic = {true, true, false};
-        DemSettings settings;
-        settings.gravity = {0, 0, -1};
-        DemEngine<3> e(box, table, contacts, vibrated_bed_lattice(n, width, 3.0, 1), settings);
-        e.remove_wall(2, 1);
-        if (opt.W > 0) e.set_wall(2, 0, WallMotion::sinusoid(A, omega));
+        const double width = bed_width(n);
+        const SpeciesTable table = bed_species(n);
+        const DemContactTable contacts = bed_contacts(table);
+        DemEngine<3> e = vibrated_bed(table, contacts, n, opt.W);
         e.advance(opt.warmup_periods * period);
 
         const auto steps =

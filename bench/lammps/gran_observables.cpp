@@ -20,6 +20,7 @@
 #include <numbers>
 #include <string>
 
+#include "bench/vibrated_bed.hpp"
 #include "libgran/dem_engine.hpp"
 #include "libgran/placement.hpp"
 
@@ -80,31 +81,12 @@ int main(int argc, char** argv) {
         return 2;
     }
 
-    // bench/bench_dem.cpp, verbatim in substance.
-    const double A = 1, period = 2 * std::numbers::pi / 3.0;
-    const double omega = std::sqrt(W);
-    const double width = 5.0 * std::sqrt(double(n) / 100.0);
-    SpeciesTable table;
-    Species s;
-    s.name = "grain";
-    s.count = n;
-    s.inertia_factor = 0.4;
-    table.species.push_back(s);
-    table.pairs.assign(1, PairCoefficients{});
-    DemContactSpec spec;
-    spec.k_n = 2e5;
-    spec.e = 0.9;
-    spec.mu = 0.4;
-    spec.gamma_t = 20;
-    const DemContactTable contacts(table, DemLaw::linear_dashpot, spec);
-    Box<3> box;
-    box.length = Vec<3>(width, width, 80);
-    box.periodic = {true, true, false};
-    DemSettings settings;
-    settings.gravity = {0, 0, -1};
-    DemEngine<3> e(box, table, contacts, vibrated_bed_lattice(n, width, 3.0, 1), settings);
-    e.remove_wall(2, 1);
-    if (W > 0) e.set_wall(2, 0, WallMotion::sinusoid(A, omega));
+    // The system of bench/bench_dem.cpp (bench/vibrated_bed.hpp).
+    const double period = gran::bench::kBedPeriod;
+    const double width = gran::bench::bed_width(n);
+    const SpeciesTable table = gran::bench::bed_species(n);
+    const DemContactTable contacts = gran::bench::bed_contacts(table);
+    DemEngine<3> e = gran::bench::vibrated_bed(table, contacts, n, W);
     e.advance(warmup_periods * period);
     const std::uint64_t warm_steps = e.counters().steps;
     const std::uint64_t warm_rebuilds = e.counters().rebuilds;
@@ -140,7 +122,8 @@ int main(int argc, char** argv) {
     }
     const double m = double(samples);
     std::printf(
-        "gran: timed-run averages every %llu steps: contacts/N %.4f T_z %.4f <z> %.4f (rebuilds/step "
+        "gran: timed-run averages every %llu steps: contacts/N %.4f T_z %.4f <z> %.4f "
+        "(rebuilds/step "
         "%.4f)\n",
         static_cast<unsigned long long>(sample), sum.contacts / m, sum.tz / m, sum.zmean / m,
         double(e.counters().rebuilds - rebuilds0) / double(steps));
