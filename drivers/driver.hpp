@@ -3,6 +3,9 @@
 // loop stops the engine at next_time(), synchronises all particles, and calls fire().
 #include <yaml-cpp/yaml.h>
 
+#include <string>
+
+#include "libgran/dem_engine.hpp"
 #include "libgran/event_driven_engine.hpp"
 #include "libgran/h5.hpp"
 #include "libgran/registry.hpp"
@@ -16,6 +19,19 @@ class Driver {
     virtual ~Driver() = default;
     // Called once the engine exists, before the run (e.g. to install wall rules).
     virtual void attach(EventDrivenEngine<D>& /*engine*/) {}
+    // The same on the soft-sphere DEM engine (engine.type: dem), which has walls but no global
+    // events. Returns an empty string, or why this driver cannot run there (the scene is refused
+    // with that message at the driver's `dem_refusal_key()`).
+    virtual std::string attach(DemEngine<D>& /*engine*/) {
+        return "this driver is not available on the dem engine (engine.type: dem supports "
+               "static_wall and vibrating_wall)";
+    }
+    virtual std::string dem_refusal_key() const { return "type"; }
+    // Largest speed of a moving boundary (V_p = A omega of a vibrating wall), 0 if none: the
+    // velocity scale of the vibrated-bed observables (W = V_p^2 / (d g)).
+    virtual double peak_velocity() const { return 0; }
+    // Period of that motion (0: none), for phase-resolved averages.
+    virtual double drive_period() const { return 0; }
     // Time of the next global event of this driver (+inf: none).
     virtual double next_time() const { return kInf; }
     // Called with the engine synchronised at next_time(); must call engine.velocities_changed()

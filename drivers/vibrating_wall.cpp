@@ -41,10 +41,11 @@ class VibratingWall final : public WallDriver<D> {
         const double v = peak_velocity();
         if (waveform_ != "sawtooth" && !(v > 0))
             p.fail("amplitude", "a vibrating wall needs amplitude > 0 and frequency > 0");
+        if (waveform_ == "sawtooth") return;
         const double excursion =
             waveform_ == "two_parabolas" ? p.real("amplitude") : 2 * p.real("amplitude");
         const double length = info.box_length[std::size_t(this->axis_)];
-        if (waveform_ != "sawtooth" && excursion + info.species->max_diameter() >= length) {
+        if (excursion + info.species->max_diameter() >= length) {
             p.fail("amplitude", fmt::format("the wall sweeps {:.4g} of the {:.4g}-long axis and "
                                             "leaves no room for particles",
                                             excursion, length));
@@ -53,10 +54,14 @@ class VibratingWall final : public WallDriver<D> {
 
     // Maximum wall speed: V = 4 A f for the two parabolas (McNamara & Falcon 2005), A omega for a
     // sinusoid, v0 for the sawtooth.
-    double peak_velocity() const {
+    double peak_velocity() const override {
         if (waveform_ == "sawtooth") return motion_.v0;
         if (waveform_ == "two_parabolas") return 4 * motion_.amplitude * motion_.omega / (2 * kPi);
         return motion_.amplitude * motion_.omega;
+    }
+
+    double drive_period() const override {
+        return waveform_ == "sawtooth" ? 0.0 : 2 * kPi / motion_.omega;
     }
 
     void write(h5::Group& g, YAML::Node& summary) const override {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <stdexcept>
 #include <string>
 
 #include "drivers/driver.hpp"
@@ -54,11 +55,44 @@ class WallDriver : public Driver<D> {
         if (upper_) engine.set_wall(axis_, 1, rule_, params_, &rng_, motion_[1]);
     }
 
+    // DEM: the same walls as soft contacts with restitution e (a constant law only: the damping
+    // of a linear spring-dashpot is set from one e, Eq. A9). A rule other than the impact rule
+    // (thermal wall) and the sawtooth limit (no wall position) are refused.
+    std::string attach(DemEngine<D>& engine) override {
+        if (rule_ != &impact_wall_rule<D>) {
+            refusal_key_ = "type";
+            return "a " + what_ + " wall is not available on the dem engine";
+        }
+        if (params_.restitution.kind != ImpactRestitution::Kind::constant) {
+            refusal_key_ = "restitution_law";
+            return "the dem engine takes a constant wall restitution (`restitution`); an impact-"
+                   "speed law comes from the contact law itself (engine.contact_law: "
+                   "hertz_mindlin)";
+        }
+        for (const auto& m : motion_) {
+            if (m.kind == WallMotion::Kind::sawtooth) {
+                refusal_key_ = "waveform";
+                return "the sawtooth limit has no wall position; the dem engine needs a wall that "
+                       "moves (two_parabolas or sinusoid)";
+            }
+        }
+        try {
+            if (lower_) engine.set_wall(axis_, 0, motion_[0], params_.restitution.e_const);
+            if (upper_) engine.set_wall(axis_, 1, motion_[1], params_.restitution.e_const);
+        } catch (const std::invalid_argument& e) {
+            refusal_key_ = "restitution";
+            return e.what();
+        }
+        dem_ = &engine;
+        return {};
+    }
+    std::string dem_refusal_key() const override { return refusal_key_; }
+
     void write(h5::Group& g, YAML::Node& summary) const override {
-        if (!engine_) return;
+        if (!engine_ && !dem_) return;
         g.attr("wall", what_);
-        const auto& hits = engine_->wall_hits();
-        const auto& impulse = engine_->wall_impulse();
+        const auto& hits = engine_ ? engine_->wall_hits() : dem_->wall_hits();
+        const auto& impulse = engine_ ? engine_->wall_impulse() : dem_->wall_impulse();
         for (int side = 0; side < 2; ++side) {
             if (side == 0 ? !lower_ : !upper_) continue;
             const std::string name = side == 0 ? "lower" : "upper";
@@ -77,11 +111,13 @@ class WallDriver : public Driver<D> {
     std::array<WallMotion, 2> motion_;  // lower, upper
     std::string what_;
     Rng rng_;
+    std::string refusal_key_ = "type";
 
   protected:
     int axis_ = 0;
     bool lower_ = true, upper_ = true;
     const EventDrivenEngine<D>* engine_ = nullptr;
+    const DemEngine<D>* dem_ = nullptr;
 };
 
 }  // namespace gran

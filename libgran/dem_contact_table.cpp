@@ -71,6 +71,7 @@ DemContactParams resolve_dem_contact(DemLaw law, const DemContactSpec& s, double
         resolve_linear(s, p);
     }
     p.k_t = law == DemLaw::linear_dashpot ? 0.0 : s.k_t_ratio * p.k_n;  // (A7): k_t = 0
+    if (s.gamma_t_ratio >= 0) p.gamma_t = s.gamma_t_ratio * p.gamma_n;
     if (!std::isfinite(p.duration) || !(p.duration > 0)) {
         fail(what, "the contact does not end (overdamped); raise e");
     }
@@ -87,6 +88,7 @@ DemContactTable::DemContactTable(const SpeciesTable& species, DemLaw law,
     const std::size_t ns = mass_.size();
     pairs_.resize(ns * ns);
     walls_.resize(ns);
+    wall_specs_.resize(ns);
     for (std::size_t a = 0; a < ns; ++a) {
         for (std::size_t b = a; b < ns; ++b) set_pair(a, b, pair);
     }
@@ -117,6 +119,15 @@ void DemContactTable::set_wall(std::size_t s, const DemContactSpec& spec) {
     if (s >= mass_.size()) throw std::out_of_range("DemContactTable::set_wall: no such species");
     const std::string what = "species " + std::to_string(s) + " against a wall";
     walls_[s] = resolve_dem_contact(law_, spec, mass_[s], 0.5 * diameter_[s], what);
+    wall_specs_[s] = spec;
+}
+
+DemContactParams DemContactTable::wall_with_restitution(std::size_t s, double e) const {
+    if (s >= mass_.size()) throw std::out_of_range("DemContactTable: no such species");
+    DemContactSpec spec = wall_specs_[s];
+    spec.e = e;
+    const std::string what = "species " + std::to_string(s) + " against a wall";
+    return resolve_dem_contact(law_, spec, mass_[s], 0.5 * diameter_[s], what);
 }
 
 double DemContactTable::shortest_duration(bool with_walls) const {

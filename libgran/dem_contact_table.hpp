@@ -42,6 +42,9 @@ struct DemContactSpec {
     // cundall_strack, hertz_mindlin: k_t = k_t_ratio k_n. 2/7 gives k_t / m_t = k_n / m_eff for
     // equal uniform spheres (tangential and normal oscillations of equal period).
     double k_t_ratio = 2.0 / 7.0;
+    // >= 0: gamma_t = gamma_t_ratio x gamma_n of the same contact (replaces gamma_t); the paper
+    // gives no c_t, and c_t = c_n is a natural reading of "a tangential dashpot" like the normal one.
+    double gamma_t_ratio = -1;
     double reference_speed = 0;  // hertz_mindlin: impact speed at which t_c is defined, > 0
 };
 
@@ -78,6 +81,8 @@ class DemContactTable {
         return pairs_[a * mass_.size() + b];
     }
     const DemContactParams& wall(std::size_t s) const { return walls_[s]; }
+    // The wall contact of species s with another restitution e (a wall driver's own e_w).
+    DemContactParams wall_with_restitution(std::size_t s, double e) const;
     const std::vector<DemContactParams>& pairs() const { return pairs_; }  // ns x ns
     const std::vector<DemContactParams>& walls() const { return walls_; }  // ns
 
@@ -92,6 +97,7 @@ class DemContactTable {
     DemLaw law_;
     std::vector<double> mass_, diameter_;
     std::vector<DemContactParams> pairs_, walls_;
+    std::vector<DemContactSpec> wall_specs_;
 };
 
 // ---------------------------------------------------------------------------------------------

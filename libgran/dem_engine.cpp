@@ -109,8 +109,8 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
     if (table_.needs_history()) wall_spring_.assign(n * 2 * D, Vec<D>::Zero());
     for (int a = 0; a < D; ++a) {
         if (box_.periodic[std::size_t(a)]) continue;
-        walls_[code(a, 0)] = {true, WallMotion::fixed(), 0.0};
-        walls_[code(a, 1)] = {true, WallMotion::fixed(), box_.length[a]};
+        walls_[code(a, 0)] = {true, WallMotion::fixed(), 0.0, table_.walls()};
+        walls_[code(a, 1)] = {true, WallMotion::fixed(), box_.length[a], table_.walls()};
     }
     for (auto& r : p_.r) {
         for (int a = 0; a < D; ++a) {
@@ -371,7 +371,7 @@ void DemEngine<D>::wall_forces(double dt_advance) {
             const bool forms = touching == 0;
             touching = 1;
             if (forms) ++formed;
-            const DemContactParams& P = table_.wall(s);
+            const DemContactParams& P = w.params[s];
             if (delta > worst * 2 * R) worst = 0.5 * delta / R;
             AngVec<D> wpi = zero, whi = zero;
             if constexpr (Rot) {
@@ -437,14 +437,14 @@ DemEnergies DemEngine<D>::energies() const {
             const double gap = inward * (p_.r[i][a] - surface) - radius_[s];
             if (!(gap < 0)) continue;
             const double xi2 = history ? wall_spring_[i * 2 * D + c].squaredNorm() : 0.0;
-            e.elastic += dem_contact_energy(law, table_.wall(s), -gap, xi2);
+            e.elastic += dem_contact_energy(law, walls_[c].params[s], -gap, xi2);
         }
     }
     return e;
 }
 
 template <int D>
-void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion) {
+void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion, double restitution) {
     if (axis < 0 || axis >= D || side < 0 || side > 1 || box_.periodic[std::size_t(axis)]) {
         fail("set_wall: walls need a bounded (non-periodic) axis and side 0 or 1");
     }
@@ -457,7 +457,19 @@ void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion) {
     if (2.0 * reach + dmax > box_.length[axis]) {
         fail("set_wall: the wall's excursion leaves no room for particles");
     }
+    std::vector<DemContactParams> params = table_.walls();
+    if (restitution >= 0) {
+        for (std::size_t s = 0; s < params.size(); ++s) {
+            params[s] = table_.wall_with_restitution(s, restitution);
+            if (dt_ > params[s].duration / 5) {
+                fail("set_wall: with restitution " + num(restitution) + " the wall contact lasts " +
+                     num(params[s].duration) + " < 5 dt (dt = " + num(dt_) +
+                     "): velocity Verlet needs at least 5 steps per contact");
+            }
+        }
+    }
     Wall& w = walls_[code(axis, side)];
+    w.params = std::move(params);
     w.present = true;
     w.motion = motion;
     w.base = side == 0 ? reach : box_.length[axis] - reach;  // excursion inside [0, L]

@@ -97,10 +97,18 @@ class DemEngine {
     const std::vector<AngVec<D>>& torques() const { return tau_; }
     DemEnergies energies() const;
     const DemNeighbourList<D>& neighbour_list() const { return list_; }
+    // Contact parameters of a wall (index 2 * axis + side) for species s.
+    const DemContactParams& wall_contact(int code, std::uint32_t s) const {
+        return walls_[std::size_t(code)].params[s];
+    }
 
     // Walls (side 0: lower, 1: upper) of a bounded axis. Sawtooth motion is refused (it has no
-    // position). Forces are re-evaluated at the current time.
-    void set_wall(int axis, int side, const WallMotion& motion = WallMotion::fixed());
+    // position). restitution in (0, 1]: this wall's e_w (the table's wall spring, friction and
+    // damping, with the dashpot of Eq. A9 for e_w); < 0: the table's wall contact. Throws
+    // std::invalid_argument if that contact is shorter than 5 dt. Forces are re-evaluated at the
+    // current time.
+    void set_wall(int axis, int side, const WallMotion& motion = WallMotion::fixed(),
+                  double restitution = -1);
     void remove_wall(int axis, int side);
     bool wall_is_set(int axis, int side) const { return walls_[code(axis, side)].present; }
     // Surface position of a wall at time t (index 2 * axis + side).
@@ -119,6 +127,7 @@ class DemEngine {
         bool present = false;
         WallMotion motion;
         double base = 0;
+        std::vector<DemContactParams> params;  // per species
     };
     static std::size_t code(int axis, int side) { return std::size_t(2 * axis + side); }
 

@@ -12,6 +12,8 @@
 #include <fstream>
 
 #include "drivers/driver.hpp"
+#include "libgran/dem_probe.hpp"
+#include "libgran/engine_view.hpp"
 #include "libgran/h5.hpp"
 #include "libgran/placement.hpp"
 #include "observables/observable.hpp"
@@ -58,7 +60,8 @@ class CollisionFanout final : public CollisionSink<D> {
 
 class Progress {
   public:
-    Progress(const RunOptions& o, double log_interval) : opt_(o), log_interval_(log_interval) {
+    Progress(const RunOptions& o, double log_interval, const char* unit)
+        : opt_(o), log_interval_(log_interval), unit_(unit) {
         start_ = Clock::now();
         last_log_ = start_;
     }
@@ -75,8 +78,8 @@ class Progress {
         const double rate = elapsed > 0 ? double(events) / elapsed : 0;
         const double eta = fraction > 1e-9 ? elapsed * (1 - fraction) / fraction : 0;
         const std::string line =
-            fmt::format("{:<13} {:5.1f}%  elapsed {:.0f}s  ETA {:.0f}s  {:.3g} events/s", phase,
-                        100 * fraction, elapsed, eta, rate);
+            fmt::format("{:<13} {:5.1f}%  elapsed {:.0f}s  ETA {:.0f}s  {:.3g} {}/s", phase,
+                        100 * fraction, elapsed, eta, rate, unit_);
         if (opt_.terminal) {
             std::fprintf(stderr, "\r%s   ", line.c_str());
             std::fflush(stderr);
@@ -95,6 +98,7 @@ class Progress {
     using Clock = std::chrono::steady_clock;
     const RunOptions& opt_;
     double log_interval_;
+    const char* unit_;
     Clock::time_point start_, last_draw_{}, last_log_;
     bool drawn_ = false;
 };
@@ -115,12 +119,20 @@ make_plugins(const Scene& sc) {
     info.box_length = sc.box_length;
     info.periodic = sc.periodic;
     info.initial_temperature = sc.temperature;
+    info.gravity = sc.engine.gravity;
+    info.engine = sc.engine_type;
     std::vector<std::unique_ptr<Driver<D>>> drivers;
     for (std::size_t k = 0; k < sc.drivers.size(); ++k) {
         info.index = k;
         drivers.push_back(Registry<Driver>::instance()
                               .find(sc.drivers[k].type)
                               ->template make<D>(sc.drivers[k].params, info));
+    }
+    for (const auto& d : drivers) {
+        if (d->peak_velocity() > info.peak_velocity) {
+            info.peak_velocity = d->peak_velocity();
+            info.drive_period = d->drive_period();
+        }
     }
     std::vector<std::unique_ptr<Observable<D>>> observables;
     for (std::size_t k = 0; k < sc.observables.size(); ++k) {
@@ -132,22 +144,251 @@ make_plugins(const Scene& sc) {
     return {std::move(drivers), std::move(observables)};
 }
 
+enum class Advance { Reached, Interrupted, Stalled };
+
 template <int D>
-RunReport run_dim(const Scene& sc, const RunOptions& opt) {
-    const Box<D> box = make_box<D>(sc);
-    auto [drivers, observables] = make_plugins<D>(sc);
+using DriverList = std::vector<std::unique_ptr<Driver<D>>>;
+template <int D>
+using ObservableList = std::vector<std::unique_ptr<Observable<D>>>;
 
-    const double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;
-    EventDrivenEngine<D> engine(box, sc.species, initial_particles<D>(sc), sc.engine);
-    for (auto& d : drivers) d->attach(engine);
-    CollisionFanout<D> fanout;
-    for (auto& o : observables) {
-        if (auto* s = o->collision_sink()) fanout.sinks.push_back(s);
+// The event-driven engine in the run loop: stops at driver events (thermostat kicks) and at
+// collision counts (schedules in collisions per particle).
+template <int D>
+class EventDrivenRunner {
+  public:
+    static constexpr const char* kWorkUnit = "events";
+
+    EventDrivenRunner(const Scene& sc, DriverList<D>& drivers, ObservableList<D>& observables)
+        : drivers_(drivers),
+          engine_(make_box<D>(sc), sc.species, initial_particles<D>(sc), sc.engine),
+          view_(engine_) {
+        for (auto& d : drivers) d->attach(engine_);
+        for (auto& o : observables) {
+            if (auto* s = o->collision_sink()) fanout_.sinks.push_back(s);
+        }
+        if (fanout_.sinks.size() == 1) engine_.set_collision_sink(fanout_.sinks[0]);
+        if (fanout_.sinks.size() > 1) engine_.set_collision_sink(&fanout_);
     }
-    if (fanout.sinks.size() == 1) engine.set_collision_sink(fanout.sinks[0]);
-    if (fanout.sinks.size() > 1) engine.set_collision_sink(&fanout);
 
-    const std::size_t n = engine.particles().size();
+    const EngineView<D>& view() const { return view_; }
+    double now() const { return engine_.now(); }
+    std::uint64_t collisions() const { return engine_.counters().collisions; }
+    std::uint64_t work() const { return engine_.counters().events; }
+
+    Advance advance(double t_target, std::uint64_t c_target, const std::atomic<bool>* interrupt) {
+        while (true) {
+            double t_driver = kInf;
+            for (auto& d : drivers_) t_driver = std::min(t_driver, d->next_time());
+            const double t_stop = std::min(t_target, t_driver);
+            const auto stop = engine_.advance(t_stop, c_target, interrupt);
+            using Stop = typename EventDrivenEngine<D>::Stop;
+            if (stop == Stop::Interrupted) return Advance::Interrupted;
+            if (stop == Stop::NoEvents) {
+                spdlog::warn("no more events (all particles at rest?): stopping the run early");
+                return Advance::Stalled;
+            }
+            if (stop == Stop::CollisionLimit) return Advance::Reached;
+            // Time limit: fire the drivers that are due; stop when the sample time is reached.
+            for (auto& d : drivers_) {
+                if (d->next_time() <= engine_.now()) {
+                    engine_.synchronize();
+                    d->fire(engine_);
+                }
+            }
+            if (engine_.now() >= t_target) return Advance::Reached;
+        }
+    }
+    // Observables read positions and velocities at now() (under gravity velocities change in free
+    // flight too).
+    void synchronize() { engine_.synchronize(); }
+
+    void write_performance(h5::Group& perf, YAML::Node& ps, double cpu) const {
+        const auto& c = engine_.counters();
+        const double n = double(engine_.particles().size());
+        perf.attr("engine", "event_driven");
+        perf.write_scalar("events", static_cast<std::int64_t>(c.events));
+        perf.write_scalar("collisions", static_cast<std::int64_t>(c.collisions));
+        perf.write_scalar("events_per_second", double(c.events) / std::max(cpu, 1e-9));
+        perf.write_scalar("collisions_per_second", double(c.collisions) / std::max(cpu, 1e-9));
+        perf.write_scalar("cell_crossings", static_cast<std::int64_t>(c.cell_crossings));
+        perf.write_scalar("wall_hits", static_cast<std::int64_t>(c.wall_hits));
+        perf.write_scalar("stale_events", static_cast<std::int64_t>(c.stale_events));
+        perf.write_scalar("tc_guard_collisions", static_cast<std::int64_t>(c.tc_collisions));
+        perf.write_scalar("overlap_collisions", static_cast<std::int64_t>(c.overlap_collisions));
+        perf.write_scalar("full_reschedules", static_cast<std::int64_t>(c.full_reschedules));
+        perf.write_scalar("collisions_per_particle", 2.0 * double(c.collisions) / n);
+        ps["engine"] = "event_driven";
+        ps["events"] = c.events;
+        ps["collisions"] = c.collisions;
+        ps["events_per_second"] = double(c.events) / std::max(cpu, 1e-9);
+        ps["collisions_per_second"] = double(c.collisions) / std::max(cpu, 1e-9);
+        ps["collisions_per_particle"] = 2.0 * double(c.collisions) / n;
+        ps["tc_guard_collisions"] = c.tc_collisions;
+        ps["overlap_collisions"] = c.overlap_collisions;
+        ps["full_reschedules"] = c.full_reschedules;
+        if (c.full_reschedules > 0 && c.collisions > 0) {
+            ps["reschedules_per_collision_per_particle"] =
+                double(c.full_reschedules) * n / (2.0 * double(c.collisions));
+        }
+    }
+
+  private:
+    DriverList<D>& drivers_;
+    CollisionFanout<D> fanout_;
+    EventDrivenEngine<D> engine_;
+    EventDrivenView<D> view_;
+};
+
+// engine.type: dem. Grain-grain restitution per species pair from the pair laws (alpha).
+inline DemContactTable dem_contact_table(const Scene& sc) {
+    const std::size_t ns = sc.species.size();
+    DemContactSpec pair = sc.dem.pair;
+    pair.e = sc.species.pair(0, 0).alpha;
+    try {
+        DemContactTable table(sc.species, sc.dem.law, pair, sc.dem.wall);
+        for (std::size_t a = 0; a < ns; ++a) {
+            for (std::size_t b = a; b < ns; ++b) {
+                DemContactSpec s = sc.dem.pair;
+                s.e = sc.species.pair(a, b).alpha;
+                table.set_pair(a, b, s);
+            }
+        }
+        return table;
+    } catch (const std::invalid_argument& e) {
+        throw SceneError(sc.engine_location + ": " + e.what());
+    }
+}
+
+// The soft-sphere DEM engine in the run loop: whole time steps up to each sample; walls come from
+// the wall drivers; no collision records (observables that need them are refused).
+template <int D>
+class DemRunner {
+  public:
+    static constexpr const char* kWorkUnit = "steps";
+
+    DemRunner(const Scene& sc, DriverList<D>& drivers, ObservableList<D>& observables)
+        : sc_(sc), table_(dem_contact_table(sc)), engine_(make_engine(sc, table_)), view_(engine_) {
+        for (std::size_t k = 0; k < drivers.size(); ++k) {
+            const std::string why = drivers[k]->attach(engine_);
+            if (!why.empty()) sc.drivers[k].params.fail(drivers[k]->dem_refusal_key(), why);
+        }
+        for (std::size_t k = 0; k < observables.size(); ++k) {
+            if (observables[k]->collision_sink()) {
+                sc.observables[k].params.fail(
+                    "type", "this observable (with these options) needs the binary collision "
+                            "records of the event_driven engine; the dem engine has contacts of "
+                            "finite duration");
+            }
+        }
+    }
+
+    const EngineView<D>& view() const { return view_; }
+    double now() const { return engine_.now(); }
+    std::uint64_t collisions() const { return engine_.counters().contacts; }
+    std::uint64_t work() const { return engine_.counters().steps; }
+    const DemEngine<D>& engine() const { return engine_; }
+
+    Advance advance(double t_target, std::uint64_t, const std::atomic<bool>* interrupt) {
+        const auto stop = engine_.advance(t_target, interrupt);
+        return stop == DemEngine<D>::Stop::Interrupted ? Advance::Interrupted : Advance::Reached;
+    }
+    void synchronize() {}  // the state is always at now()
+
+    void write_performance(h5::Group& perf, YAML::Node& ps, double cpu) const {
+        const auto& c = engine_.counters();
+        const double n = double(engine_.particles().size());
+        const double psteps = double(c.steps) * n / std::max(cpu, 1e-9);
+        perf.attr("engine", "dem");
+        perf.write_scalar("steps", static_cast<std::int64_t>(c.steps));
+        perf.write_scalar("particle_steps_per_second", psteps);
+        perf.write_scalar("dt", engine_.dt());
+        perf.write_scalar("contacts", static_cast<std::int64_t>(c.contacts));
+        perf.write_scalar("wall_contacts", static_cast<std::int64_t>(c.wall_contacts));
+        perf.write_scalar("active_contacts", static_cast<std::int64_t>(c.active_contacts));
+        perf.write_scalar("neighbour_list_builds", static_cast<std::int64_t>(c.rebuilds));
+        perf.write_scalar("max_overlap", c.max_overlap);
+        perf.attr_on("max_overlap", "unit", "contact distance");
+        ps["engine"] = "dem";
+        ps["steps"] = c.steps;
+        ps["particle_steps_per_second"] = psteps;
+        ps["dt"] = engine_.dt();
+        ps["contacts"] = c.contacts;
+        ps["wall_contacts"] = c.wall_contacts;
+        ps["neighbour_list_builds"] = c.rebuilds;
+        ps["max_overlap"] = c.max_overlap;
+        // What the run's contacts achieve: isolated head-on collisions on this engine, same law,
+        // parameters and dt, at the reference speed.
+        const double v = sc_.dem.probe_speed;
+        const std::size_t ns = sc_.species.size();
+        double worst_dt_over_tc = 0;
+        YAML::Node iso;
+        auto report = [&](const std::string& name, const DemProbeResult& r) {
+            h5::Group g = perf.group("isolated_collisions/" + name);
+            g.write_scalar("requested_restitution", r.requested_restitution);
+            g.write_scalar("restitution", r.restitution);
+            g.write_scalar("contact_time", r.closed_form_duration);
+            g.write_scalar("measured_contact_time", r.duration);
+            g.write_scalar("dt_over_tc", r.dt_over_tc);
+            YAML::Node y;
+            y["requested_restitution"] = r.requested_restitution;
+            y["restitution"] = r.restitution;
+            y["contact_time"] = r.closed_form_duration;
+            y["measured_contact_time"] = r.duration;
+            y["dt_over_tc"] = r.dt_over_tc;
+            iso[name] = y;
+            worst_dt_over_tc = std::max(worst_dt_over_tc, r.dt_over_tc);
+        };
+        try {
+            for (std::size_t a = 0; a < ns; ++a) {
+                for (std::size_t b = a; b < ns; ++b) {
+                    report(sc_.species.species[a].name + "-" + sc_.species.species[b].name,
+                           probe_pair_collision<D>(sc_.species, table_, a, b, v, engine_.dt()));
+                }
+            }
+            std::vector<double> wall_e;
+            for (int code = 0; code < 2 * D; ++code) {
+                if (!engine_.wall_is_set(code / 2, code % 2)) continue;
+                const double e = engine_.wall_contact(code, 0).restitution;
+                if (std::find(wall_e.begin(), wall_e.end(), e) != wall_e.end()) continue;
+                wall_e.push_back(e);
+                for (std::size_t s = 0; s < ns; ++s) {
+                    report(fmt::format("{}-wall_e{:g}", sc_.species.species[s].name, e),
+                           probe_wall_collision<D>(sc_.species, table_, s, e, v, engine_.dt()));
+                }
+            }
+        } catch (const std::exception& e) {
+            spdlog::warn("isolated-collision check failed: {}", e.what());
+        }
+        perf.write_scalar("dt_over_tc", worst_dt_over_tc);
+        ps["dt_over_tc"] = worst_dt_over_tc;
+        ps["isolated_collisions"] = iso;
+    }
+
+  private:
+    static DemEngine<D> make_engine(const Scene& sc, const DemContactTable& table) {
+        DemSettings s = sc.dem.settings;
+        s.gravity = sc.engine.gravity;
+        try {
+            return DemEngine<D>(make_box<D>(sc), sc.species, table, initial_particles<D>(sc), s);
+        } catch (const std::invalid_argument& e) {
+            throw SceneError(sc.engine_location + ": " + e.what());
+        }
+    }
+
+    const Scene& sc_;
+    DemContactTable table_;
+    DemEngine<D> engine_;
+    DemView<D> view_;
+};
+
+template <int D, class Runner>
+RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& drivers,
+                   ObservableList<D>& observables) {
+    const double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;
+    Runner runner(sc, drivers, observables);
+    const EngineView<D>& view = runner.view();
+
+    const std::size_t n = view.particles().size();
     const auto& s = sc.schedule;
     const bool by_time = s.unit == ScheduleUnit::Time;
     auto coll_of = [&](double cpp) {
@@ -162,7 +403,7 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
     std::size_t frame_every =
         sc.frames > 0 ? std::max<std::size_t>(1, expected_samples / sc.frames) : 0;
 
-    Progress progress(opt, sc.progress_interval);
+    Progress progress(opt, sc.progress_interval, Runner::kWorkUnit);
     bool interrupted = false;
     bool stalled = false;
     std::size_t samples_taken = 0;
@@ -173,8 +414,8 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
         const bool measuring = phase == 1;
         const double length = measuring ? s.measurement : s.equilibration;
         if (length <= 0) continue;
-        const double t0 = engine.now();
-        const std::uint64_t c0 = engine.counters().collisions;
+        const double t0 = runner.now();
+        const std::uint64_t c0 = runner.collisions();
         if (measuring) {
             t_measure_start = t0;
             coll_measure_start = c0;
@@ -185,54 +426,28 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
             const double t_target = by_time ? t0 + double(k) * s.sample_interval : kInf;
             const std::uint64_t c_target =
                 by_time ? UINT64_MAX : c0 + coll_of(double(k) * s.sample_interval);
-            // Advance to the sample, stopping for driver events on the way.
-            while (true) {
-                double t_driver = kInf;
-                for (auto& d : drivers) t_driver = std::min(t_driver, d->next_time());
-                const double t_stop = std::min(t_target, t_driver);
-                const auto stop = engine.advance(t_stop, c_target, opt.interrupt);
-                if (stop == EventDrivenEngine<D>::Stop::Interrupted) {
-                    interrupted = true;
-                    break;
-                }
-                if (stop == EventDrivenEngine<D>::Stop::NoEvents) {
-                    stalled = true;
-                    spdlog::warn("no more events (all particles at rest?): stopping the run early");
-                    break;
-                }
-                if (stop == EventDrivenEngine<D>::Stop::CollisionLimit) break;
-                // Time limit: fire the drivers that are due; stop when the sample time is reached.
-                for (auto& d : drivers) {
-                    if (d->next_time() <= engine.now()) {
-                        engine.synchronize();
-                        d->fire(engine);
-                    }
-                }
-                if (engine.now() >= t_target) break;
-            }
+            const Advance adv = runner.advance(t_target, c_target, opt.interrupt);
+            interrupted = adv == Advance::Interrupted;
+            stalled = adv == Advance::Stalled;
             if (interrupted || stalled) break;
-            // Observables read positions and velocities at now() (under gravity velocities change
-            // in free flight too).
-            engine.synchronize();
-            SampleContext<D> ctx{engine.now(), measuring, expected_samples, engine, sc.species};
+            runner.synchronize();
+            SampleContext<D> ctx{runner.now(), measuring, expected_samples, view, sc.species};
             for (auto& o : observables) o->sample(ctx);
             if (measuring) {
                 ++samples_taken;
                 if (frame_every && samples_taken % frame_every == 0 &&
                     frame_time.size() < sc.frames) {
-                    engine.synchronize();
-                    frame_time.push_back(engine.now());
-                    // Frames list particles by their original index (the engine re-sorts storage).
+                    frame_time.push_back(runner.now());
+                    // Frames list particles by their original index (the engine may re-sort).
                     const std::size_t base = frame_pos.size();
                     frame_pos.resize(base + n * D);
                     frame_vel.resize(base + n * D);
-                    const auto& ids = engine.ids();
+                    const auto& p = view.particles();
                     for (std::size_t i = 0; i < n; ++i) {
+                        const std::size_t at = base + std::size_t(view.id(i)) * D;
                         for (int a = 0; a < D; ++a) {
-                            frame_pos[base + ids[i] * D + std::size_t(a)] =
-                                engine.particles().r[i][a];
-                            frame_vel[base + ids[i] * D + std::size_t(a)] =
-                                engine.particles().v[i][a];
+                            frame_pos[at + std::size_t(a)] = p.r[i][a];
+                            frame_vel[at + std::size_t(a)] = p.v[i][a];
                         }
                     }
                 }
@@ -240,7 +455,7 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
             const double done =
                 (measuring ? s.equilibration : 0.0) + length * double(k) / double(nsamples);
             progress.update(measuring ? "measurement" : "equilibration",
-                            done / (s.equilibration + s.measurement), engine.counters().events);
+                            done / (s.equilibration + s.measurement), runner.work());
         }
     }
     progress.finish();
@@ -300,27 +515,19 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
             drv_summary[sc.drivers[k].name] = ds;
         }
 
-        const auto& c = engine.counters();
-        const double measured_coll = double(c.collisions - coll_measure_start);
+        const double measured_coll = double(runner.collisions() - coll_measure_start);
         h5::Group perf = root.group("performance");
         perf.write_scalar("wall_time", wall);
         perf.attr_on("wall_time", "unit", "s");
         perf.write_scalar("cpu_time", cpu);
         perf.attr_on("cpu_time", "unit", "s");
-        perf.write_scalar("events", static_cast<std::int64_t>(c.events));
-        perf.write_scalar("collisions", static_cast<std::int64_t>(c.collisions));
-        perf.write_scalar("events_per_second", double(c.events) / std::max(cpu, 1e-9));
-        perf.write_scalar("collisions_per_second", double(c.collisions) / std::max(cpu, 1e-9));
-        perf.write_scalar("cell_crossings", static_cast<std::int64_t>(c.cell_crossings));
-        perf.write_scalar("wall_hits", static_cast<std::int64_t>(c.wall_hits));
-        perf.write_scalar("stale_events", static_cast<std::int64_t>(c.stale_events));
-        perf.write_scalar("tc_guard_collisions", static_cast<std::int64_t>(c.tc_collisions));
-        perf.write_scalar("overlap_collisions", static_cast<std::int64_t>(c.overlap_collisions));
-        perf.write_scalar("full_reschedules", static_cast<std::int64_t>(c.full_reschedules));
-        perf.write_scalar("final_time", engine.now());
-        perf.write_scalar("collisions_per_particle", 2.0 * double(c.collisions) / double(n));
+        YAML::Node ps;
+        ps["wall_time_s"] = wall;
+        ps["cpu_time_s"] = cpu;
+        runner.write_performance(perf, ps, cpu);
+        perf.write_scalar("final_time", runner.now());
         perf.write_scalar("measured_collisions_per_particle", 2.0 * measured_coll / double(n));
-        perf.write_scalar("measured_time", engine.now() - t_measure_start);
+        perf.write_scalar("measured_time", runner.now() - t_measure_start);
         perf.write_scalar("samples", static_cast<std::int64_t>(samples_taken));
         perf.write_scalar("completed", static_cast<std::int64_t>(rep.completed ? 1 : 0));
         perf.write_scalar("interrupted", static_cast<std::int64_t>(interrupted ? 1 : 0));
@@ -344,8 +551,7 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
                 q.write("step", steps);
             }
             std::vector<std::int64_t> spec(n);
-            for (std::size_t i = 0; i < n; ++i)
-                spec[engine.ids()[i]] = engine.particles().species[i];
+            for (std::size_t i = 0; i < n; ++i) spec[view.id(i)] = view.particles().species[i];
             pg.write("species", spec);
         }
 
@@ -359,21 +565,6 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
         summary["packing_fraction"] = sc.packing_fraction;
         summary["observables"] = obs_summary;
         if (drv_summary.size() > 0) summary["drivers"] = drv_summary;
-        YAML::Node ps;
-        ps["wall_time_s"] = wall;
-        ps["cpu_time_s"] = cpu;
-        ps["events"] = c.events;
-        ps["collisions"] = c.collisions;
-        ps["events_per_second"] = double(c.events) / std::max(cpu, 1e-9);
-        ps["collisions_per_second"] = double(c.collisions) / std::max(cpu, 1e-9);
-        ps["collisions_per_particle"] = 2.0 * double(c.collisions) / double(n);
-        ps["tc_guard_collisions"] = c.tc_collisions;
-        ps["overlap_collisions"] = c.overlap_collisions;
-        ps["full_reschedules"] = c.full_reschedules;
-        if (c.full_reschedules > 0 && c.collisions > 0) {
-            ps["reschedules_per_collision_per_particle"] =
-                double(c.full_reschedules) * double(n) / (2.0 * double(c.collisions));
-        }
         summary["performance"] = ps;
         file.close();
     }
@@ -388,15 +579,34 @@ RunReport run_dim(const Scene& sc, const RunOptions& opt) {
     return rep;
 }
 
+template <int D>
+RunReport run_dim(const Scene& sc, const RunOptions& opt) {
+    auto [drivers, observables] = make_plugins<D>(sc);
+    if (sc.engine_type == "dem")
+        return run_with<D, DemRunner<D>>(sc, opt, drivers, observables);
+    return run_with<D, EventDrivenRunner<D>>(sc, opt, drivers, observables);
+}
+
+}  // namespace
+
+namespace {
+template <int D>
+void check_dim(const Scene& sc) {
+    auto [drivers, observables] = make_plugins<D>(sc);
+    if (sc.engine_type == "dem") {
+        // Builds the engine: the time step, contact parameters and wall drivers are checked.
+        DemRunner<D> runner(sc, drivers, observables);
+    } else {
+        (void)initial_particles<D>(sc);
+    }
+}
 }  // namespace
 
 void check_scene(const Scene& scene) {
     if (scene.dimension == 2) {
-        (void)initial_particles<2>(scene);
-        (void)make_plugins<2>(scene);
+        check_dim<2>(scene);
     } else {
-        (void)initial_particles<3>(scene);
-        (void)make_plugins<3>(scene);
+        check_dim<3>(scene);
     }
 }
 

@@ -90,11 +90,58 @@ Schema initial_schema() {
 }
 
 Schema engine_schema() {
-    return {choice("type", "event_driven", {"event_driven"}, "simulation engine"),
+    return {choice("type", "event_driven", {"event_driven", "dem"},
+                   "simulation engine: event_driven (hard particles, instantaneous collisions) or "
+                   "dem (time-stepped soft spheres with friction, Bhateja et al. 2016)"),
             choice("collapse_guard", "tc", {"tc", "none"},
-                   "inelastic-collapse guard: TC model (collisions within tc of a previous one are "
-                   "elastic)"),
-            real("tc", "1e-6", "time", "TC-model time window", 0, 1e308)};
+                   "event_driven: inelastic-collapse guard: TC model (collisions within tc of a "
+                   "previous one are elastic)"),
+            real("tc", "1e-6", "time", "event_driven: TC-model time window", 0, 1e308),
+            choice("contact_law", "linear_dashpot",
+                   {"linear_dashpot", "cundall_strack", "hertz_mindlin"},
+                   "dem: contact law of every pair and wall: linear_dashpot (Bhateja et al. Eqs. "
+                   "A5-A9: linear spring, dashpot from e, Coulomb-capped tangential dashpot), "
+                   "cundall_strack (tangential spring with history), hertz_mindlin"),
+            real("stiffness", "0", "mass/time^2",
+                 "dem: normal stiffness k_n of a grain-grain contact (hertz_mindlin: coefficient "
+                 "of delta^(3/2), mass/(length^(1/2) time^2)); 0: set from contact_time",
+                 0, 1e308),
+            real("contact_time", "0", "time",
+                 "dem: head-on contact duration t_c to give the stiffness when stiffness = 0 "
+                 "(hertz_mindlin: at reference_speed)",
+                 0, 1e308),
+            real("dt", "0", "time", "dem: time step; 0: dt_fraction x the shortest contact time",
+                 0, 1e308),
+            real("dt_fraction", "0.02", "",
+                 "dem: time step as a fraction of the shortest contact duration (when dt = 0); at "
+                 "most 0.2",
+                 0, 1, true, false),
+            real("friction", "0", "",
+                 "dem: Coulomb friction coefficient mu of grain-grain contacts (Eq. A8); 0: "
+                 "smooth, no rotation",
+                 0, 1e308),
+            real("tangential_damping", "0", "mass/time",
+                 "dem: tangential dashpot c_t (Eq. A7), capped by mu |F_n|", 0, 1e308),
+            optional(real("tangential_damping_ratio", "", "",
+                          "dem: c_t as a multiple of the contact's own normal dashpot c_n "
+                          "(replaces tangential_damping; e.g. 1: c_t = c_n)",
+                          0, 1e308)),
+            optional(real("wall_friction", "", "",
+                          "dem: friction coefficient against walls (default: friction)", 0,
+                          1e308)),
+            optional(real("wall_tangential_damping", "", "mass/time",
+                          "dem: tangential dashpot against walls (default: tangential_damping)", 0,
+                          1e308)),
+            real("tangential_stiffness_ratio", "0.2857142857142857", "",
+                 "dem, cundall_strack and hertz_mindlin: k_t / k_n (2/7: equal normal and "
+                 "tangential periods for uniform spheres)",
+                 0, 1e308, true),
+            real("reference_speed", "0", "velocity",
+                 "dem: impact speed of the isolated test collisions reported with the run (and "
+                 "hertz_mindlin: of contact_time); 0: sqrt(T0 / m) of the lightest species",
+                 0, 1e308),
+            real("skin", "0.1", "largest diameter",
+                 "dem: Verlet-list skin (the list is rebuilt once a grain moved skin / 2)", 0, 10)};
 }
 
 Schema run_schema() {
@@ -113,6 +160,73 @@ Schema output_schema() {
     return {integer(
         "frames", "0",
         "trajectory frames written under /particles (equally spaced in the measurement)", 0, 1e6)};
+}
+
+// engine.type: dem. Grain-grain restitution comes from the pair laws (constant_restitution
+// alpha, smooth: roughness on this engine is friction, engine.friction); walls are elastic unless
+// a wall driver sets its restitution.
+void read_dem_settings(const Params& ep, Scene& sc) {
+    DemSceneSettings& d = sc.dem;
+    const std::string law = ep.str("contact_law");
+    d.law = law == "cundall_strack"  ? DemLaw::cundall_strack
+            : law == "hertz_mindlin" ? DemLaw::hertz_mindlin
+                                     : DemLaw::linear_dashpot;
+    d.pair.k_n = ep.real("stiffness");
+    d.pair.t_c = ep.real("contact_time");
+    if (d.pair.k_n == 0 && d.pair.t_c == 0) {
+        ep.fail("stiffness", "the dem engine needs `stiffness` (k_n) or `contact_time` (t_c)");
+    }
+    if (d.pair.k_n > 0 && d.pair.t_c > 0) {
+        ep.fail("contact_time", "give `stiffness` or `contact_time`, not both");
+    }
+    d.pair.mu = ep.real("friction");
+    d.pair.gamma_t = ep.real("tangential_damping");
+    if (ep.has("tangential_damping_ratio")) d.pair.gamma_t_ratio = ep.real("tangential_damping_ratio");
+    d.pair.k_t_ratio = ep.real("tangential_stiffness_ratio");
+    double m_min = kInf;
+    for (const auto& sp : sc.species.species) m_min = std::min(m_min, sp.mass);
+    d.probe_speed = ep.real("reference_speed") > 0 ? ep.real("reference_speed")
+                                                   : std::sqrt(sc.temperature / m_min);
+    d.pair.reference_speed = d.probe_speed;
+    if (d.law == DemLaw::hertz_mindlin && d.pair.t_c > 0 && ep.real("reference_speed") == 0) {
+        ep.fail("reference_speed", "hertz_mindlin with contact_time needs the impact speed at "
+                                   "which t_c holds (reference_speed)");
+    }
+    d.wall = d.pair;
+    d.wall.e = 1;  // elastic unless a wall driver says otherwise
+    if (ep.has("wall_friction")) d.wall.mu = ep.real("wall_friction");
+    if (ep.has("wall_tangential_damping")) {
+        d.wall.gamma_t = ep.real("wall_tangential_damping");
+        d.wall.gamma_t_ratio = -1;
+    }
+    d.settings.dt = ep.real("dt");
+    d.settings.dt_fraction = ep.real("dt_fraction");
+    d.settings.skin = ep.real("skin");
+    if (d.settings.dt == 0 && d.settings.dt_fraction > 0.2) {
+        ep.fail("dt_fraction", fmt::format("dt_fraction {} exceeds 1/5: velocity Verlet needs at "
+                                           "least 5 steps per contact (default 1/50)",
+                                           d.settings.dt_fraction));
+    }
+    const std::size_t ns = sc.species.size();
+    for (std::size_t a = 0; a < ns; ++a) {
+        for (std::size_t b = a; b < ns; ++b) {
+            const PairCoefficients& c = sc.species.pair(a, b);
+            const std::string pair = sc.species.species[a].name + "-" + sc.species.species[b].name;
+            if (c.law != "constant_restitution") {
+                ep.fail("type", fmt::format("pair {} uses law '{}'; the dem engine takes "
+                                            "constant_restitution (alpha is e_p) and makes "
+                                            "impact-speed dependence with contact_law: "
+                                            "hertz_mindlin",
+                                            pair, c.law));
+            }
+            if (c.beta != -1) {
+                ep.fail("type", fmt::format("pair {} has beta = {}; on the dem engine roughness is "
+                                            "Coulomb friction: set engine.friction (and "
+                                            "tangential_damping) and leave beta = -1",
+                                            pair, c.beta));
+            }
+        }
+    }
 }
 
 std::vector<PluginEntry> read_plugins(const YAML::Node& list, const Where& w, bool observable,
@@ -382,10 +496,16 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     Params ep = read_params(child(root, "engine"), engine_schema(), top.child("engine"));
     sc.engine.tc_guard = ep.str("collapse_guard") == "tc";
     sc.engine.tc = ep.real("tc");
+    sc.engine_type = ep.str("type");
+    sc.engine_location = locate(top.child("engine"), child(root, "engine"));
+    if (sc.engine_type == "dem") read_dem_settings(ep, sc);
     res["engine"] = ep.resolved();
 
     // Run schedule.
     Params rp = read_params(child(root, "run"), run_schema(), top.child("run"));
+    if (sc.engine_type == "dem" && rp.str("unit") != "time") {
+        rp.fail("unit", "the dem engine schedules by time: set run.unit: time");
+    }
     sc.schedule.unit =
         rp.str("unit") == "time" ? ScheduleUnit::Time : ScheduleUnit::CollisionsPerParticle;
     sc.schedule.equilibration = rp.real("equilibration");

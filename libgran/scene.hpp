@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "libgran/dem_contact_table.hpp"
+#include "libgran/dem_engine.hpp"
 #include "libgran/event_driven_engine.hpp"
 #include "libgran/params.hpp"
 #include "species/species.hpp"
@@ -29,6 +31,15 @@ struct Schedule {
     double sample_interval = 1;
 };
 
+// engine.type: dem. Pair restitution comes from the species pair laws (alpha); `pair` holds the
+// rest of a grain-grain contact, `wall` of a grain-wall contact (e_w from the wall drivers).
+struct DemSceneSettings {
+    DemLaw law = DemLaw::linear_dashpot;
+    DemContactSpec pair, wall;
+    DemSettings settings;
+    double probe_speed = 1;  // impact speed of the isolated test collisions reported by a run
+};
+
 struct Scene {
     std::string file;
     YAML::Node resolved;
@@ -43,12 +54,15 @@ struct Scene {
     std::string placement = "random";
     double temperature = 1;
     EngineSettings engine;
+    std::string engine_type = "event_driven";  // or "dem"
+    DemSceneSettings dem;
     Schedule schedule;
     std::vector<PluginEntry> drivers;
     std::vector<PluginEntry> observables;
     std::size_t frames = 0;
     double progress_interval = 10;
     std::string box_location;  // "file:line:col: box" for errors found when placing particles
+    std::string engine_location;  // "file:line:col: engine" for errors found building the engine
 };
 
 // Reads and validates a scene file; `overrides` are "dotted.key=value" (--set) applied first.

@@ -25,7 +25,7 @@ class KineticEnergy final : public Observable<D> {
         time_.push_back(ctx.time);
         energy_.push_back(per);
         phase_.push_back(ctx.measuring ? 1 : 0);
-        cpp_.push_back(2.0 * double(ctx.engine.counters().collisions) / double(p.size()));
+        cpp_.push_back(2.0 * double(ctx.engine.collisions()) / double(p.size()));
         if (ctx.measuring) measured_.push(per);
     }
 

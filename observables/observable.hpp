@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "libgran/event_driven_engine.hpp"
+#include "libgran/engine_view.hpp"
 #include "libgran/h5.hpp"
 #include "libgran/registry.hpp"
 #include "libgran/scene_info.hpp"
@@ -21,7 +21,7 @@ struct SampleContext {
     double time = 0;
     bool measuring = false;            // false during equilibration
     std::size_t expected_samples = 0;  // samples the measurement phase will take
-    const EventDrivenEngine<D>& engine;
+    const EngineView<D>& engine;  // either engine (libgran/engine_view.hpp)
     const SpeciesTable& species;
 };
 
@@ -29,7 +29,9 @@ template <int D>
 class Observable {
   public:
     virtual ~Observable() = default;
-    // Non-null to receive every collision (costs a record per collision; only when asked).
+    // Non-null to receive every collision (costs a record per collision; only when asked). Only the
+    // event-driven engine makes collision records: a scene that needs them on the dem engine is
+    // refused.
     virtual CollisionSink<D>* collision_sink() { return nullptr; }
     virtual void sample(const SampleContext<D>& ctx) = 0;
     virtual void write(h5::Group& group, YAML::Node& summary) const = 0;

@@ -44,7 +44,8 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         stride_ = 2 + D;
         sums_.assign(nblocks_ * (bins_ + 1) * table_.size() * stride_, 0.0);
         samples_in_block_.assign(nblocks_, 0);
-        pressure_ = p.boolean("pressure");
+        // The collisional virial needs binary collision records: event-driven runs only.
+        pressure_ = p.boolean("pressure") && info.engine != "dem";
         coll_.assign(nblocks_ * (bins_ + 1) * D, 0.0);
         block_time_.assign(nblocks_, 0.0);
     }
@@ -354,7 +355,8 @@ const bool registered = register_plugin<Observable, Profiles>(
      integer("blocks", "16", "blocks of samples for the jackknife error bars", 2, 1000),
      boolean(
          "pressure", "true",
-         "measure the pressure tensor (kinetic + collisional virial); subscribes to collisions"),
+         "measure the pressure tensor (kinetic + collisional virial); subscribes to collisions "
+         "(event_driven engine; not measured on the dem engine)"),
      optional(text("reference_species", "",
                    "species whose temperature divides the ratios (default: first)"))});
 

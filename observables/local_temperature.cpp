@@ -1,0 +1,317 @@
+// Granular temperature of a vibrated bed as Bhateja, Sharma & Singh, Phys. Fluids 28, 043301
+// (2016) define it (issue #5):
+//   Eq. (5)  T = (m / (2 d_f)) (<u^2> + <v^2> + <w^2>) =: (T_x + T_y + T_z) / d_f,
+// so T_a = m <c_a^2> / 2 per component (half the usual m <c_a^2>), with c the fluctuation
+// velocity; the paper's headline quantity is T_z / (m V_p^2), V_p = A omega, against
+// W = V_p^2 / (d g).
+//
+// Fluctuation: about the local mean velocity u(z, phase), the mass-weighted mean of the grains in
+// the same slab (depth `bin_width`, one diameter by default, as the paper's local temperature,
+// Sec. VI) at the same phase of the drive (`phase_bins` per period of the fastest moving wall).
+// A bed riding on the base has no temperature in this definition (the paper's T rises from 0 at
+// W ~ 1); about a single mean velocity it would have T_z ~ m V_p^2 / 4.
+//
+// Reported:
+//   local profiles  T_a(z) = sum m c_a^2 / (2 count) per slab, volume fraction phi(z), grains per
+//                   slab; z measured from the mean position of the lower wall of the axis;
+//   particle average  T_a = sum over all grains m c_a^2 / (2 count): each grain counts once;
+//   volume average    T_a^vol = mean of T_a(z) over the slabs of the bed, the paper's
+//                     T = int T(r) dV / V (Eq. 1); the bed is the slabs holding at least
+//                     `min_occupancy` grains on average (the paper does not say where its V ends);
+//   both scaled by m V_p^2 (T_*_scaled), and W.
+// Error bars: jackknife over `blocks` consecutive blocks of the measurement (the local means are
+// recomputed without each block).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "observables/observable.hpp"
+
+namespace gran {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+template <int D>
+class LocalTemperature final : public Observable<D> {
+  public:
+    LocalTemperature(const Params& p, const SceneInfo& info)
+        : table_(*info.species),
+          nblocks_(static_cast<std::size_t>(p.integer("blocks"))),
+          phases_(static_cast<std::size_t>(p.integer("phase_bins"))),
+          min_occupancy_(p.real("min_occupancy")),
+          peak_velocity_(info.peak_velocity),
+          period_(info.drive_period) {
+        axis_ = D - 1;
+        if (p.has("axis")) {
+            const std::string a = p.str("axis");
+            axis_ = a == "x" ? 0 : (a == "y" ? 1 : 2);
+            if (axis_ >= D) p.fail("axis", fmt::format("axis {} does not exist in {}D", a, D));
+        }
+        length_ = info.box_length[std::size_t(axis_)];
+        bounded_ = !info.periodic[std::size_t(axis_)];
+        width_ = p.has("bin_width") ? p.real("bin_width") : table_.max_diameter();
+        slabs_ = static_cast<std::size_t>(std::ceil(length_ / width_ - 1e-9));
+        if (slabs_ > 100000) p.fail("bin_width", "more than 1e5 slabs: increase bin_width");
+        cross_section_ = 1;
+        for (int a = 0; a < D; ++a) {
+            if (a != axis_) cross_section_ *= info.box_length[std::size_t(a)];
+        }
+        if (!(period_ > 0)) phases_ = 1;  // nothing to resolve
+        double m = 0, d = 0, n = 0;
+        for (const auto& s : table_.species) {
+            m += double(s.count) * s.mass;
+            d += double(s.count) * s.diameter;
+            n += double(s.count);
+        }
+        mass_ = m / n;
+        diameter_ = d / n;
+        g_ = std::abs(info.gravity[std::size_t(axis_)]);
+        stride_ = 3 + 2 * D;  // count, volume, mass, sum m v_a (D), sum m v_a^2 (D)
+        sums_.assign(nblocks_ * slabs_ * phases_ * stride_, 0.0);
+        samples_in_block_.assign(nblocks_, 0);
+    }
+
+    void sample(const SampleContext<D>& ctx) override {
+        if (!ctx.measuring) return;
+        if (samples_ == 0) base_ = base_position(ctx);
+        const auto& p = ctx.engine.particles();
+        const std::size_t expected = std::max<std::size_t>(ctx.expected_samples, 1);
+        const std::size_t block = std::min(nblocks_ - 1, samples_ * nblocks_ / expected);
+        ++samples_in_block_[block];
+        ++samples_;
+        std::size_t phase = 0;
+        if (phases_ > 1) {
+            const double f = ctx.time / period_ - std::floor(ctx.time / period_);
+            phase = std::min(phases_ - 1, static_cast<std::size_t>(f * double(phases_)));
+        }
+        const double vd = D == 2 ? std::numbers::pi / 4 : std::numbers::pi / 6;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            double z = p.r[i][axis_];
+            if (!bounded_) z -= length_ * std::floor(z / length_);
+            const auto slab = std::min(
+                slabs_ - 1, static_cast<std::size_t>(std::max(0.0, z) / width_));
+            const auto& sp = table_.species[p.species[i]];
+            double* s = &sums_[((block * slabs_ + slab) * phases_ + phase) * stride_];
+            s[0] += 1;
+            s[1] += vd * std::pow(sp.diameter, D);
+            s[2] += sp.mass;
+            for (int a = 0; a < D; ++a) {
+                s[3 + a] += sp.mass * p.v[i][a];
+                s[3 + D + a] += sp.mass * p.v[i][a] * p.v[i][a];
+            }
+        }
+    }
+
+    void write(h5::Group& g, YAML::Node& summary) const override {
+        if (samples_ == 0) return;
+        g.attr("axis", std::string(component_name(axis_)));
+        g.attr("convention",
+               "T_a = m <c_a^2> / 2 (Bhateja et al. 2016, Eq. 5), c = v - u(z, drive phase)");
+        g.write_scalar("bin_width", width_);
+        g.write_scalar("phase_bins", static_cast<std::int64_t>(phases_));
+        g.write_scalar("base_position", base_);
+        std::vector<double> z(slabs_);
+        for (std::size_t j = 0; j < slabs_; ++j) z[j] = (double(j) + 0.5) * width_ - base_;
+        g.write("z", z);
+        g.attr_on("z", "unit", "length");
+
+        // Each estimate is a function of the sums with some blocks left out (jackknife).
+        const Totals all = totals(nblocks_);
+        std::vector<Totals> without;
+        for (std::size_t b = 0; b < nblocks_; ++b) {
+            if (samples_in_block_[b] > 0) without.push_back(totals(b));
+        }
+        auto jack = [&](auto f) {
+            Estimate e{f(all), kNaN};
+            const double k = double(without.size());
+            if (k < 2) return e;
+            std::vector<double> r;
+            for (const auto& t : without) r.push_back(f(t));
+            double mean = 0;
+            for (double x : r) mean += x / k;
+            double var = 0;
+            for (double x : r) var += (x - mean) * (x - mean);
+            e.error = std::sqrt((k - 1) / k * var);
+            return e;
+        };
+
+        // Slabs of the bed (for the volume average): mean occupancy >= min_occupancy.
+        std::vector<std::size_t> bed;
+        for (std::size_t j = 0; j < slabs_; ++j) {
+            if (all.count[j] / double(samples_) >= min_occupancy_) bed.push_back(j);
+        }
+        g.write_scalar("bed_slabs", static_cast<std::int64_t>(bed.size()));
+
+        const double slab_volume = cross_section_ * width_;
+        std::vector<double> number(slabs_), phi(slabs_), phi_err(slabs_);
+        for (std::size_t j = 0; j < slabs_; ++j) {
+            const Estimate e = jack([&](const Totals& t) {
+                return t.volume[j] / (double(t.samples) * slab_volume);
+            });
+            phi[j] = e.value;
+            phi_err[j] = e.error;
+            number[j] = all.count[j] / double(samples_);
+        }
+        g.write("phi", phi);
+        g.write("phi_error", phi_err);
+        g.write("grains_per_slab", number);
+
+        const double scale = mass_ * peak_velocity_ * peak_velocity_;
+        YAML::Node& s = summary;
+        for (int a = 0; a < D; ++a) {
+            const std::string c = component_name(a);
+            std::vector<double> val(slabs_), err(slabs_);
+            for (std::size_t j = 0; j < slabs_; ++j) {
+                const Estimate e = jack([&](const Totals& t) { return t.local(j, a); });
+                val[j] = e.value;
+                err[j] = e.error;
+            }
+            g.write("T_" + c + "_profile", val);
+            g.write("T_" + c + "_profile_error", err);
+            g.attr_on("T_" + c + "_profile", "unit", "energy");
+            const Estimate tp = jack([&](const Totals& t) { return t.particle_average(a); });
+            const Estimate tv = jack([&](const Totals& t) { return t.volume_average(bed, a); });
+            write_estimate(g, "T_" + c, tp, "energy", s);
+            write_estimate(g, "T_" + c + "_volume", tv, "energy", s);
+            if (scale > 0) {
+                write_estimate(g, "T_" + c + "_scaled", {tp.value / scale, tp.error / scale}, "",
+                               s);
+                write_estimate(g, "T_" + c + "_volume_scaled", {tv.value / scale, tv.error / scale},
+                               "", s);
+            }
+        }
+        // Total T = (T_x + ... ) / d_f with jackknife over the same blocks.
+        const Estimate tt = jack([&](const Totals& t) {
+            double x = 0;
+            for (int a = 0; a < D; ++a) x += t.particle_average(a) / D;
+            return x;
+        });
+        const Estimate ttv = jack([&](const Totals& t) {
+            double x = 0;
+            for (int a = 0; a < D; ++a) x += t.volume_average(bed, a) / D;
+            return x;
+        });
+        write_estimate(g, "T", tt, "energy", s);
+        write_estimate(g, "T_volume", ttv, "energy", s);
+        if (scale > 0) {
+            write_estimate(g, "T_scaled", {tt.value / scale, tt.error / scale}, "", s);
+            write_estimate(g, "T_volume_scaled", {ttv.value / scale, ttv.error / scale}, "", s);
+            g.write_scalar("peak_velocity", peak_velocity_);
+            s["peak_velocity"] = peak_velocity_;
+            if (g_ > 0) {
+                const double w = peak_velocity_ * peak_velocity_ / (diameter_ * g_);
+                g.write_scalar("W", w);
+                s["W"] = w;
+            }
+        }
+    }
+
+  private:
+    // Sums over a set of blocks, reduced over drive phases where the local mean allows it.
+    struct Totals {
+        std::size_t samples = 0;
+        std::vector<double> count, volume;
+        std::vector<std::array<double, D>> sum_mc2;  // per slab: sum m c_a^2 about u(z, phase)
+        double local(std::size_t j, int a) const {
+            return count[j] > 0 ? 0.5 * sum_mc2[j][std::size_t(a)] / count[j] : kNaN;
+        }
+        double particle_average(int a) const {
+            double num = 0, den = 0;
+            for (std::size_t j = 0; j < count.size(); ++j) {
+                num += sum_mc2[j][std::size_t(a)];
+                den += count[j];
+            }
+            return den > 0 ? 0.5 * num / den : kNaN;
+        }
+        double volume_average(const std::vector<std::size_t>& bed, int a) const {
+            double x = 0;
+            std::size_t k = 0;
+            for (std::size_t j : bed) {
+                if (count[j] > 0) {
+                    x += local(j, a);
+                    ++k;
+                }
+            }
+            return k > 0 ? x / double(k) : kNaN;
+        }
+    };
+
+    // All blocks except `skip` (skip = nblocks_: all).
+    Totals totals(std::size_t skip) const {
+        Totals t;
+        t.count.assign(slabs_, 0);
+        t.volume.assign(slabs_, 0);
+        t.sum_mc2.assign(slabs_, std::array<double, D>{});
+        std::vector<double> cell(stride_);
+        for (std::size_t b = 0; b < nblocks_; ++b) {
+            if (b != skip) t.samples += samples_in_block_[b];
+        }
+        for (std::size_t j = 0; j < slabs_; ++j) {
+            for (std::size_t ph = 0; ph < phases_; ++ph) {
+                std::fill(cell.begin(), cell.end(), 0.0);
+                for (std::size_t b = 0; b < nblocks_; ++b) {
+                    if (b == skip) continue;
+                    const double* s = &sums_[((b * slabs_ + j) * phases_ + ph) * stride_];
+                    for (std::size_t k = 0; k < stride_; ++k) cell[k] += s[k];
+                }
+                if (cell[0] == 0) continue;
+                t.count[j] += cell[0];
+                t.volume[j] += cell[1];
+                // sum m (v - u)^2 = sum m v^2 - (sum m v)^2 / sum m, u the mass-weighted mean.
+                for (int a = 0; a < D; ++a) {
+                    const double mv = cell[3 + std::size_t(a)];
+                    t.sum_mc2[j][std::size_t(a)] +=
+                        std::max(0.0, cell[3 + D + std::size_t(a)] - mv * mv / cell[2]);
+                }
+            }
+        }
+        return t;
+    }
+
+    // Mean position of the lower wall of the axis over one drive period (0 on a periodic axis).
+    double base_position(const SampleContext<D>& ctx) const {
+        if (!bounded_) return 0;
+        const int code = 2 * axis_;
+        if (!(period_ > 0)) return ctx.engine.wall_position(code, ctx.time);
+        double x = 0;
+        const int k = 64;
+        for (int i = 0; i < k; ++i)
+            x += ctx.engine.wall_position(code, ctx.time + period_ * i / k) / k;
+        return x;
+    }
+
+    const SpeciesTable& table_;
+    std::size_t nblocks_, phases_;
+    double min_occupancy_, peak_velocity_, period_;
+    int axis_ = D - 1;
+    double length_ = 1, width_ = 1, cross_section_ = 1, base_ = 0;
+    bool bounded_ = true;
+    std::size_t slabs_ = 1, stride_ = 1, samples_ = 0;
+    double mass_ = 1, diameter_ = 1, g_ = 0;
+    std::vector<double> sums_;
+    std::vector<std::size_t> samples_in_block_;
+};
+
+const bool registered = register_plugin<Observable, LocalTemperature>(
+    "local_temperature",
+    "granular temperature of a vibrated bed (Bhateja et al. 2016): T_a = m <c_a^2> / 2 about the "
+    "local mean velocity of each slab and drive phase; profiles T_a(z) and phi(z), particle and "
+    "volume averages, scaled by m V_p^2, and W = V_p^2 / (d g)",
+    {optional(choice("axis", "", {"x", "y", "z"},
+                     "vibration axis (default: the last axis, y in 2D, z in 3D)")),
+     optional(real("bin_width", "", "length", "slab depth (default: the largest diameter)", 0,
+                   1e308, true)),
+     integer("phase_bins", "16",
+             "drive phases resolved in the local mean velocity (1 without a moving wall)", 1,
+             1000),
+     real("min_occupancy", "0.1", "grains",
+          "slabs in the volume average: mean number of grains at least this", 0, 1e308),
+     integer("blocks", "16", "blocks of samples for the jackknife error bars", 2, 1000)});
+
+}  // namespace
+}  // namespace gran
