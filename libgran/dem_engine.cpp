@@ -253,7 +253,10 @@ void DemEngine<D>::accumulate_forces(double dt_advance) {
 }
 
 // Pair contacts over the half neighbour list: force on i, its opposite on j (Newton's third law
-// exactly, so the total momentum changes by round-off only).
+// exactly, so the total momentum changes by round-off only). Raw pointers throughout (the byte
+// stores to the contact flags may alias anything, which would reload every vector's data pointer
+// per entry); nothing is written for an entry that neither touches nor touched, nor for a row
+// without contact.
 template <int D>
 template <DemLaw L, bool Rot>
 void DemEngine<D>::pair_forces(double dt_advance) {
@@ -264,50 +267,66 @@ void DemEngine<D>::pair_forces(double dt_advance) {
     const AngVec<D> zero = ang_zero<D>();
     std::uint64_t formed = 0, active = 0;
     double worst = counters_.max_overlap;
-    DemNeighbourList<D>& nl = list_;
+    const Box<D> box = box_;
+    const std::uint32_t* start = list_.start.data();
+    const std::uint32_t* partner = list_.partner.data();
+    std::uint8_t* touching = list_.touching.data();
+    Vec<D>* spring = list_.spring.data();
+    const Vec<D>* r = p_.r.data();
+    const Vec<D>* v = p_.v.data();
+    const Vec<D>* v_pred = v_pred_.data();
+    const AngVec<D>* w = p_.w.data();
+    const AngVec<D>* w_pred = w_pred_.data();
+    const std::uint32_t* species = p_.species.data();
+    const double* radius = radius_.data();
+    Vec<D>* f = f_.data();
+    AngVec<D>* tau = tau_.data();
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec<D> ri = p_.r[i];
-        const std::uint32_t si = p_.species[i];
+        const std::uint32_t begin = start[i], end = start[i + 1];
+        if (begin == end) continue;
+        const Vec<D> ri = r[i];
+        const std::uint32_t si = species[i];
         const DemContactParams* row = params + si * ns;
-        const double li = radius_[si];
+        const double li = radius[si];
         Vec<D> fi = Vec<D>::Zero();
         AngVec<D> ti = zero;
-        const std::uint32_t end = nl.start[i + 1];
-        for (std::uint32_t k = nl.start[i]; k < end; ++k) {
-            const std::uint32_t j = nl.partner[k];
-            const std::uint32_t sj = p_.species[j];
+        bool any = false;
+        for (std::uint32_t k = begin; k < end; ++k) {
+            const std::uint32_t j = partner[k];
+            const std::uint32_t sj = species[j];
             const DemContactParams& P = row[sj];
-            const Vec<D> d = box_.separation(ri, p_.r[j]);
+            const Vec<D> d = box.separation(ri, r[j]);
             const double dist2 = d.squaredNorm();
             if (!(dist2 < P.sigma * P.sigma)) {
-                nl.touching[k] = 0;
+                if (touching[k]) touching[k] = 0;
                 continue;
             }
+            any = true;
             const double dist = std::sqrt(dist2);
             const Vec<D> nrm = (1.0 / dist) * d;  // from j to i
             const double delta = P.sigma - dist;  // (A6)
-            const bool forms = nl.touching[k] == 0;
-            nl.touching[k] = 1;
+            const bool forms = touching[k] == 0;
+            touching[k] = 1;
             ++active;
             if (forms) ++formed;
             if (delta > worst * P.sigma) worst = delta / P.sigma;
-            const double lj = radius_[sj];
+            const double lj = radius[sj];
             AngVec<D> wpi = zero, wpj = zero, whi = zero, whj = zero;
             if constexpr (Rot) {
-                wpi = w_pred_[i];
-                wpj = w_pred_[j];
-                whi = p_.w[i];
-                whj = p_.w[j];
+                wpi = w_pred[i];
+                wpj = w_pred[j];
+                whi = w[i];
+                whj = w[j];
             }
             // (A3) at the predicted velocities: the dampers' relative velocity.
-            const Vec<D> g = contact_velocity<D>(v_pred_[i], v_pred_[j], wpi, wpj, li, lj, nrm);
+            const Vec<D> g = contact_velocity<D>(v_pred[i], v_pred[j], wpi, wpj, li, lj, nrm);
             const ContactForce<D> c = [&] {
                 if constexpr (kHistory) {
-                    Vec<D>& xi = nl.spring[k];
+                    Vec<D>& xi = spring[k];
                     if (forms) xi.setZero();
                     // The spring integrates the half-step velocities that moved the positions;
                     // a new contact only over its in-contact part delta / closing speed.
-                    const Vec<D> gh = contact_velocity<D>(p_.v[i], p_.v[j], whi, whj, li, lj, nrm);
+                    const Vec<D> gh = contact_velocity<D>(v[i], v[j], whi, whj, li, lj, nrm);
                     const double closing = -gh.dot(nrm);
                     double dt_in = dt_advance;
                     if (forms && closing * dt_in > delta) dt_in = delta / closing;
@@ -316,19 +335,22 @@ void DemEngine<D>::pair_forces(double dt_advance) {
                 } else {
                     (void)whi;
                     (void)whj;
+                    (void)spring;
+                    (void)v;
                     Vec<D> unused;
                     return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, unused);
                 }
             }();
             fi += c.force;
-            f_[j] -= c.force;
+            f[j] -= c.force;
             if constexpr (Rot) {
                 ti += c.torque_i;
-                tau_[j] += c.torque_j;
+                tau[j] += c.torque_j;
             }
         }
-        f_[i] += fi;
-        if constexpr (Rot) tau_[i] += ti;
+        if (!any) continue;
+        f[i] += fi;
+        if constexpr (Rot) tau[i] += ti;
     }
     counters_.contacts += formed;
     counters_.active_contacts = active;
