@@ -267,7 +267,14 @@ void DemEngine<D>::pair_forces(double dt_advance) {
     const AngVec<D> zero = ang_zero<D>();
     std::uint64_t formed = 0, active = 0;
     double worst = counters_.max_overlap;
-    const Box<D> box = box_;
+    // Minimum image per component without branches on the axis kind: a bounded axis has period
+    // 0 and half-period infinity. Scalars, not a vector patched in memory (store forwarding).
+    std::array<double, D> period{}, half{};
+    for (std::size_t k = 0; k < std::size_t(D); ++k) {
+        const bool per = box_.periodic[k];
+        period[k] = per ? box_.length[int(k)] : 0.0;
+        half[k] = per ? 0.5 * box_.length[int(k)] : kInf;
+    }
     const std::uint32_t* start = list_.start.data();
     const std::uint32_t* partner = list_.partner.data();
     std::uint8_t* touching = list_.touching.data();
@@ -295,12 +302,20 @@ void DemEngine<D>::pair_forces(double dt_advance) {
             const std::uint32_t j = partner[k];
             const std::uint32_t sj = species[j];
             const DemContactParams& P = row[sj];
-            const Vec<D> d = box.separation(ri, r[j]);
-            const double dist2 = d.squaredNorm();
+            std::array<double, D> dc;
+            double dist2 = 0;
+            for (std::size_t a = 0; a < std::size_t(D); ++a) {
+                double x = ri[int(a)] - r[j][int(a)];
+                x = x > half[a] ? x - period[a] : (x < -half[a] ? x + period[a] : x);
+                dc[a] = x;
+                dist2 += x * x;
+            }
             if (!(dist2 < P.sigma * P.sigma)) {
                 if (touching[k]) touching[k] = 0;
                 continue;
             }
+            Vec<D> d;
+            for (std::size_t a = 0; a < std::size_t(D); ++a) d[int(a)] = dc[a];
             any = true;
             const double dist = std::sqrt(dist2);
             const Vec<D> nrm = (1.0 / dist) * d;  // from j to i
