@@ -395,13 +395,19 @@ void DemEngine<D>::wall_forces(double dt_advance) {
         vw[a] = w.motion.velocity(t);
         double impulse = 0;
         std::uint64_t formed = 0;
+        // Raw pointers (the byte stores to the contact flags may alias anything); a flag is
+        // written only when it changes.
+        const std::uint32_t* species = p_.species.data();
+        const double* radius = radius_.data();
+        const Vec<D>* r = p_.r.data();
+        std::uint8_t* touching_of = wall_touching_.data() + c;
         for (std::size_t i = 0; i < n; ++i) {
-            const std::uint32_t s = p_.species[i];
-            const double R = radius_[s];
-            const double gap = inward * (p_.r[i][a] - surface) - R;
-            std::uint8_t& touching = wall_touching_[i * kWalls + c];
+            const std::uint32_t s = species[i];
+            const double R = radius[s];
+            const double gap = inward * (r[i][a] - surface) - R;
+            std::uint8_t& touching = touching_of[i * kWalls];
             if (!(gap < 0)) {
-                touching = 0;
+                if (touching) touching = 0;
                 continue;
             }
             const double delta = -gap;
