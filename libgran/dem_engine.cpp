@@ -255,13 +255,11 @@ void DemEngine<D>::accumulate_forces(double dt_advance) {
 // Pair contacts over the half neighbour list: force on i, its opposite on j (Newton's third law
 // exactly, so the total momentum changes by round-off only). Raw pointers throughout (the byte
 // stores to the contact flags may alias anything, which would reload every vector's data pointer
-// per entry); nothing is written for an entry that neither touches nor touched, nor for a row
-// without contact.
+// per entry); nothing is written for an entry that neither touches nor touched.
 template <int D>
 template <DemLaw L, bool Rot>
 void DemEngine<D>::pair_forces(double dt_advance) {
     constexpr bool kHistory = L != DemLaw::linear_dashpot;
-    const std::size_t n = p_.size();
     const std::size_t ns = mass_.size();
     const DemContactParams* params = table_.pairs().data();
     const AngVec<D> zero = ang_zero<D>();
@@ -275,7 +273,8 @@ void DemEngine<D>::pair_forces(double dt_advance) {
         period[k] = per ? box_.length[int(k)] : 0.0;
         half[k] = per ? 0.5 * box_.length[int(k)] : kInf;
     }
-    const std::uint32_t* start = list_.start.data();
+    const std::size_t entries = list_.entries();
+    const std::uint32_t* owner = list_.owner.data();
     const std::uint32_t* partner = list_.partner.data();
     std::uint8_t* touching = list_.touching.data();
     Vec<D>* spring = list_.spring.data();
@@ -288,84 +287,70 @@ void DemEngine<D>::pair_forces(double dt_advance) {
     const double* radius = radius_.data();
     Vec<D>* f = f_.data();
     AngVec<D>* tau = tau_.data();
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint32_t begin = start[i], end = start[i + 1];
-        if (begin == end) continue;
-        const Vec<D> ri = r[i];
-        const std::uint32_t si = species[i];
-        const DemContactParams* row = params + si * ns;
-        const double li = radius[si];
-        Vec<D> fi = Vec<D>::Zero();
-        AngVec<D> ti = zero;
-        bool any = false;
-        for (std::uint32_t k = begin; k < end; ++k) {
-            const std::uint32_t j = partner[k];
-            const std::uint32_t sj = species[j];
-            const DemContactParams& P = row[sj];
-            std::array<double, D> dc;
-            double dist2 = 0;
-            for (std::size_t a = 0; a < std::size_t(D); ++a) {
-                double x = ri[int(a)] - r[j][int(a)];
-                x = x > half[a] ? x - period[a] : (x < -half[a] ? x + period[a] : x);
-                dc[a] = x;
-                dist2 += x * x;
-            }
-            if (!(dist2 < P.sigma * P.sigma)) {
-                if (touching[k]) touching[k] = 0;
-                continue;
-            }
-            Vec<D> d;
-            for (std::size_t a = 0; a < std::size_t(D); ++a) d[int(a)] = dc[a];
-            any = true;
-            const double dist = std::sqrt(dist2);
-            const Vec<D> nrm = (1.0 / dist) * d;  // from j to i
-            const double delta = P.sigma - dist;  // (A6)
-            const bool forms = touching[k] == 0;
-            touching[k] = 1;
-            ++active;
-            if (forms) ++formed;
-            if (delta > worst * P.sigma) worst = delta / P.sigma;
-            const double lj = radius[sj];
-            AngVec<D> wpi = zero, wpj = zero, whi = zero, whj = zero;
-            if constexpr (Rot) {
-                wpi = w_pred[i];
-                wpj = w_pred[j];
-                whi = w[i];
-                whj = w[j];
-            }
-            // (A3) at the predicted velocities: the dampers' relative velocity.
-            const Vec<D> g = contact_velocity<D>(v_pred[i], v_pred[j], wpi, wpj, li, lj, nrm);
-            const ContactForce<D> c = [&] {
-                if constexpr (kHistory) {
-                    Vec<D>& xi = spring[k];
-                    if (forms) xi.setZero();
-                    // The spring integrates the half-step velocities that moved the positions;
-                    // a new contact only over its in-contact part delta / closing speed.
-                    const Vec<D> gh = contact_velocity<D>(v[i], v[j], whi, whj, li, lj, nrm);
-                    const double closing = -gh.dot(nrm);
-                    double dt_in = dt_advance;
-                    if (forms && closing * dt_in > delta) dt_in = delta / closing;
-                    advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
-                    return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, xi);
-                } else {
-                    (void)whi;
-                    (void)whj;
-                    (void)spring;
-                    (void)v;
-                    Vec<D> unused;
-                    return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, unused);
-                }
-            }();
-            fi += c.force;
-            f[j] -= c.force;
-            if constexpr (Rot) {
-                ti += c.torque_i;
-                tau[j] += c.torque_j;
-            }
+    // One flat loop over the entries (no per-row branches: most rows of a dilute gas are empty).
+    for (std::size_t k = 0; k < entries; ++k) {
+        const std::uint32_t i = owner[k], j = partner[k];
+        const std::uint32_t si = species[i], sj = species[j];
+        const DemContactParams& P = params[si * ns + sj];
+        std::array<double, D> dc;
+        double dist2 = 0;
+        for (std::size_t a = 0; a < std::size_t(D); ++a) {
+            double x = r[i][int(a)] - r[j][int(a)];
+            x = x > half[a] ? x - period[a] : (x < -half[a] ? x + period[a] : x);
+            dc[a] = x;
+            dist2 += x * x;
         }
-        if (!any) continue;
-        f[i] += fi;
-        if constexpr (Rot) tau[i] += ti;
+        if (!(dist2 < P.sigma * P.sigma)) {
+            if (touching[k]) touching[k] = 0;
+            continue;
+        }
+        Vec<D> d;
+        for (std::size_t a = 0; a < std::size_t(D); ++a) d[int(a)] = dc[a];
+        const double dist = std::sqrt(dist2);
+        const Vec<D> nrm = (1.0 / dist) * d;  // from j to i
+        const double delta = P.sigma - dist;  // (A6)
+        const bool forms = touching[k] == 0;
+        touching[k] = 1;
+        ++active;
+        if (forms) ++formed;
+        if (delta > worst * P.sigma) worst = delta / P.sigma;
+        const double li = radius[si], lj = radius[sj];
+        AngVec<D> wpi = zero, wpj = zero, whi = zero, whj = zero;
+        if constexpr (Rot) {
+            wpi = w_pred[i];
+            wpj = w_pred[j];
+            whi = w[i];
+            whj = w[j];
+        }
+        // (A3) at the predicted velocities: the dampers' relative velocity.
+        const Vec<D> g = contact_velocity<D>(v_pred[i], v_pred[j], wpi, wpj, li, lj, nrm);
+        const ContactForce<D> c = [&] {
+            if constexpr (kHistory) {
+                Vec<D>& xi = spring[k];
+                if (forms) xi.setZero();
+                // The spring integrates the half-step velocities that moved the positions; a
+                // new contact only over its in-contact part delta / closing speed.
+                const Vec<D> gh = contact_velocity<D>(v[i], v[j], whi, whj, li, lj, nrm);
+                const double closing = -gh.dot(nrm);
+                double dt_in = dt_advance;
+                if (forms && closing * dt_in > delta) dt_in = delta / closing;
+                advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
+                return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, xi);
+            } else {
+                (void)whi;
+                (void)whj;
+                (void)spring;
+                (void)v;
+                Vec<D> unused;
+                return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, unused);
+            }
+        }();
+        f[i] += c.force;
+        f[j] -= c.force;
+        if constexpr (Rot) {
+            tau[i] += c.torque_i;
+            tau[j] += c.torque_j;
+        }
     }
     counters_.contacts += formed;
     counters_.active_contacts = active;

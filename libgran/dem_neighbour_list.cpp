@@ -46,6 +46,7 @@ void DemNeighbourList<D>::configure(const Box<D>& box, std::vector<double> cutof
     }
     start.assign(n_particles + 1, 0);
     partner.clear();
+    owner.clear();
     touching.clear();
     spring.clear();
     cell_start_.clear();
@@ -274,6 +275,10 @@ void DemNeighbourList<D>::build(const Box<D>& box, const std::vector<Vec<D>>& r,
     partner.resize(pairs_.size());
     for (std::uint64_t p : pairs_) {
         partner[--start[std::size_t(p >> 32)]] = std::uint32_t(p);
+    }
+    owner.resize(partner.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        std::fill(owner.begin() + start[i], owner.begin() + start[i + 1], std::uint32_t(i));
     }
     touching.assign(partner.size(), 0);
     if (history_) spring.assign(partner.size(), Vec<D>::Zero());

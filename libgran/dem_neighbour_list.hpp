@@ -42,6 +42,7 @@ class DemNeighbourList {
 
     std::vector<std::uint32_t> start;    // n + 1 row offsets
     std::vector<std::uint32_t> partner;  // j > i
+    std::vector<std::uint32_t> owner;    // i of each entry (the row it belongs to)
     std::vector<std::uint8_t> touching;  // 1: in contact at the last force evaluation
     std::vector<Vec<D>> spring;          // tangential spring xi (history laws only)
 
