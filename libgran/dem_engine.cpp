@@ -253,82 +253,104 @@ void DemEngine<D>::accumulate_forces(double dt_advance) {
 }
 
 // Pair contacts over the half neighbour list: force on i, its opposite on j (Newton's third law
-// exactly, so the total momentum changes by round-off only).
+// exactly, so the total momentum changes by round-off only). Raw pointers throughout (the byte
+// stores to the contact flags may alias anything, which would reload every vector's data pointer
+// per entry); nothing is written for an entry that neither touches nor touched.
 template <int D>
 template <DemLaw L, bool Rot>
 void DemEngine<D>::pair_forces(double dt_advance) {
     constexpr bool kHistory = L != DemLaw::linear_dashpot;
-    const std::size_t n = p_.size();
     const std::size_t ns = mass_.size();
     const DemContactParams* params = table_.pairs().data();
     const AngVec<D> zero = ang_zero<D>();
     std::uint64_t formed = 0, active = 0;
     double worst = counters_.max_overlap;
-    DemNeighbourList<D>& nl = list_;
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vec<D> ri = p_.r[i];
-        const std::uint32_t si = p_.species[i];
-        const DemContactParams* row = params + si * ns;
-        const double li = radius_[si];
-        Vec<D> fi = Vec<D>::Zero();
-        AngVec<D> ti = zero;
-        const std::uint32_t end = nl.start[i + 1];
-        for (std::uint32_t k = nl.start[i]; k < end; ++k) {
-            const std::uint32_t j = nl.partner[k];
-            const std::uint32_t sj = p_.species[j];
-            const DemContactParams& P = row[sj];
-            const Vec<D> d = box_.separation(ri, p_.r[j]);
-            const double dist2 = d.squaredNorm();
-            if (!(dist2 < P.sigma * P.sigma)) {
-                nl.touching[k] = 0;
-                continue;
-            }
-            const double dist = std::sqrt(dist2);
-            const Vec<D> nrm = (1.0 / dist) * d;  // from j to i
-            const double delta = P.sigma - dist;  // (A6)
-            const bool forms = nl.touching[k] == 0;
-            nl.touching[k] = 1;
-            ++active;
-            if (forms) ++formed;
-            if (delta > worst * P.sigma) worst = delta / P.sigma;
-            const double lj = radius_[sj];
-            AngVec<D> wpi = zero, wpj = zero, whi = zero, whj = zero;
-            if constexpr (Rot) {
-                wpi = w_pred_[i];
-                wpj = w_pred_[j];
-                whi = p_.w[i];
-                whj = p_.w[j];
-            }
-            // (A3) at the predicted velocities: the dampers' relative velocity.
-            const Vec<D> g = contact_velocity<D>(v_pred_[i], v_pred_[j], wpi, wpj, li, lj, nrm);
-            const ContactForce<D> c = [&] {
-                if constexpr (kHistory) {
-                    Vec<D>& xi = nl.spring[k];
-                    if (forms) xi.setZero();
-                    // The spring integrates the half-step velocities that moved the positions;
-                    // a new contact only over its in-contact part delta / closing speed.
-                    const Vec<D> gh = contact_velocity<D>(p_.v[i], p_.v[j], whi, whj, li, lj, nrm);
-                    const double closing = -gh.dot(nrm);
-                    double dt_in = dt_advance;
-                    if (forms && closing * dt_in > delta) dt_in = delta / closing;
-                    advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
-                    return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, xi);
-                } else {
-                    (void)whi;
-                    (void)whj;
-                    Vec<D> unused;
-                    return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, unused);
-                }
-            }();
-            fi += c.force;
-            f_[j] -= c.force;
-            if constexpr (Rot) {
-                ti += c.torque_i;
-                tau_[j] += c.torque_j;
-            }
+    // Minimum image per component without branches on the axis kind: a bounded axis has period
+    // 0 and half-period infinity. Scalars, not a vector patched in memory (store forwarding).
+    std::array<double, D> period{}, half{};
+    for (std::size_t k = 0; k < std::size_t(D); ++k) {
+        const bool per = box_.periodic[k];
+        period[k] = per ? box_.length[int(k)] : 0.0;
+        half[k] = per ? 0.5 * box_.length[int(k)] : kInf;
+    }
+    const std::size_t entries = list_.entries();
+    const std::uint32_t* owner = list_.owner.data();
+    const std::uint32_t* partner = list_.partner.data();
+    std::uint8_t* touching = list_.touching.data();
+    Vec<D>* spring = list_.spring.data();
+    const Vec<D>* r = p_.r.data();
+    const Vec<D>* v = p_.v.data();
+    const Vec<D>* v_pred = v_pred_.data();
+    const AngVec<D>* w = p_.w.data();
+    const AngVec<D>* w_pred = w_pred_.data();
+    const std::uint32_t* species = p_.species.data();
+    const double* radius = radius_.data();
+    Vec<D>* f = f_.data();
+    AngVec<D>* tau = tau_.data();
+    // One flat loop over the entries (no per-row branches: most rows of a dilute gas are empty).
+    for (std::size_t k = 0; k < entries; ++k) {
+        const std::uint32_t i = owner[k], j = partner[k];
+        const std::uint32_t si = species[i], sj = species[j];
+        const DemContactParams& P = params[si * ns + sj];
+        std::array<double, D> dc;
+        double dist2 = 0;
+        for (std::size_t a = 0; a < std::size_t(D); ++a) {
+            double x = r[i][int(a)] - r[j][int(a)];
+            x = x > half[a] ? x - period[a] : (x < -half[a] ? x + period[a] : x);
+            dc[a] = x;
+            dist2 += x * x;
         }
-        f_[i] += fi;
-        if constexpr (Rot) tau_[i] += ti;
+        if (!(dist2 < P.sigma * P.sigma)) {
+            if (touching[k]) touching[k] = 0;
+            continue;
+        }
+        Vec<D> d;
+        for (std::size_t a = 0; a < std::size_t(D); ++a) d[int(a)] = dc[a];
+        const double dist = std::sqrt(dist2);
+        const Vec<D> nrm = (1.0 / dist) * d;  // from j to i
+        const double delta = P.sigma - dist;  // (A6)
+        const bool forms = touching[k] == 0;
+        touching[k] = 1;
+        ++active;
+        if (forms) ++formed;
+        if (delta > worst * P.sigma) worst = delta / P.sigma;
+        const double li = radius[si], lj = radius[sj];
+        AngVec<D> wpi = zero, wpj = zero, whi = zero, whj = zero;
+        if constexpr (Rot) {
+            wpi = w_pred[i];
+            wpj = w_pred[j];
+            whi = w[i];
+            whj = w[j];
+        }
+        // (A3) at the predicted velocities: the dampers' relative velocity.
+        const Vec<D> g = contact_velocity<D>(v_pred[i], v_pred[j], wpi, wpj, li, lj, nrm);
+        const ContactForce<D> c = [&] {
+            if constexpr (kHistory) {
+                Vec<D>& xi = spring[k];
+                if (forms) xi.setZero();
+                // The spring integrates the half-step velocities that moved the positions; a
+                // new contact only over its in-contact part delta / closing speed.
+                const Vec<D> gh = contact_velocity<D>(v[i], v[j], whi, whj, li, lj, nrm);
+                const double closing = -gh.dot(nrm);
+                double dt_in = dt_advance;
+                if (forms && closing * dt_in > delta) dt_in = delta / closing;
+                advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
+                return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, xi);
+            } else {
+                (void)whi;
+                (void)whj;
+                (void)spring;
+                (void)v;
+                Vec<D> unused;
+                return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, unused);
+            }
+        }();
+        f[i] += c.force;
+        f[j] -= c.force;
+        if constexpr (Rot) {
+            tau[i] += c.torque_i;
+            tau[j] += c.torque_j;
+        }
     }
     counters_.contacts += formed;
     counters_.active_contacts = active;
@@ -358,13 +380,19 @@ void DemEngine<D>::wall_forces(double dt_advance) {
         vw[a] = w.motion.velocity(t);
         double impulse = 0;
         std::uint64_t formed = 0;
+        // Raw pointers (the byte stores to the contact flags may alias anything); a flag is
+        // written only when it changes.
+        const std::uint32_t* species = p_.species.data();
+        const double* radius = radius_.data();
+        const Vec<D>* r = p_.r.data();
+        std::uint8_t* touching_of = wall_touching_.data() + c;
         for (std::size_t i = 0; i < n; ++i) {
-            const std::uint32_t s = p_.species[i];
-            const double R = radius_[s];
-            const double gap = inward * (p_.r[i][a] - surface) - R;
-            std::uint8_t& touching = wall_touching_[i * kWalls + c];
+            const std::uint32_t s = species[i];
+            const double R = radius[s];
+            const double gap = inward * (r[i][a] - surface) - R;
+            std::uint8_t& touching = touching_of[i * kWalls];
             if (!(gap < 0)) {
-                touching = 0;
+                if (touching) touching = 0;
                 continue;
             }
             const double delta = -gap;

@@ -8,6 +8,9 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
+#include <set>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -442,6 +445,137 @@ void check_neighbour_list() {
 TEST(DemEngine, NeighbourListFindsEveryOverlappingPair) {
     check_neighbour_list<2>();
     check_neighbour_list<3>();
+}
+
+// The cell-built list itself equals the brute-force list: every pair i < j closer than its cutoff
+// sigma_ij + skin (minimum image), each exactly once as partner j of row i, and no other entry.
+// Boxes that take every path of the build: periodic axes with a single cell (minimum image per
+// pair), with 3 and more cells (image shifts of the half stencil), bounded axes binned over the
+// range the particles occupy (also outside [0, L)), a grid coarsened to its cap of cells; two
+// species (sigma 1 and 0.6), uniform random positions (overlaps allowed: the list is checked right
+// after construction, before any step).
+template <int D>
+void check_list_against_brute_force(const Box<D>& box, std::size_t n, const Vec<D>& lo,
+                                    const Vec<D>& hi, unsigned seed, std::size_t min_pairs) {
+    const SpeciesTable t =
+        table_of({make_species("a", 1, 1, 0.4, n / 2), make_species("b", 0.5, 0.6, 0.4, n / 2)});
+    DemContactSpec spec;
+    spec.t_c = 0.05;
+    spec.e = 0.9;
+    const DemContactTable contacts(t, DemLaw::linear_dashpot, spec);
+    Particles<D> p;
+    p.resize(n, false);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (std::size_t i = 0; i < n; ++i) {
+        p.species[i] = std::uint32_t(i % 2);
+        for (int a = 0; a < D; ++a) p.r[i][a] = lo[a] + u(rng) * (hi[a] - lo[a]);
+    }
+    DemSettings settings;
+    settings.skin = 0.1;  // x the largest diameter, 1
+    DemEngine<D> e(box, t, contacts, p, settings);
+    const auto& nl = e.neighbour_list();
+    const auto& ps = e.particles();
+    ASSERT_EQ(nl.start.size(), n + 1);
+    std::set<std::pair<std::size_t, std::size_t>> listed;
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::uint32_t k = nl.start[i]; k < nl.start[i + 1]; ++k) {
+            const std::size_t j = nl.partner[k];
+            EXPECT_LT(i, j);
+            EXPECT_EQ(nl.owner[k], i);
+            EXPECT_TRUE(listed.insert({i, j}).second) << "pair " << i << " " << j << " twice";
+        }
+    }
+    EXPECT_EQ(nl.entries(), listed.size());
+    std::size_t expected = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = i + 1; j < n; ++j) {
+            const double cut = 0.5 * e.species_diameter(ps.species[i]) +
+                               0.5 * e.species_diameter(ps.species[j]) + 0.1;
+            if (!(e.box().separation(ps.r[i], ps.r[j]).squaredNorm() < cut * cut)) continue;
+            ++expected;
+            EXPECT_TRUE(listed.count({i, j})) << "pair " << i << " " << j << " missing";
+        }
+    }
+    EXPECT_EQ(listed.size(), expected);
+    EXPECT_GE(expected, min_pairs);
+}
+
+TEST(DemEngine, NeighbourListEqualsBruteForceInEveryKindOfBox) {
+    {  // 3D periodic, one cell per axis (L < 3 cutoffs), then 3 cells per axis
+        check_list_against_brute_force<3>(make_box<3>(2.5, true), 40, Vec<3>::Zero(),
+                                          Vec<3>::Constant(2.5), 1, 20);
+        check_list_against_brute_force<3>(make_box<3>(3.5, true), 80, Vec<3>::Zero(),
+                                          Vec<3>::Constant(3.5), 2, 40);
+    }
+    {  // 3D periodic x, y and a bounded z, particles in a slab well inside (the vibrated bed)
+        Box<3> box = make_box<3>(7.3, true, 30);
+        check_list_against_brute_force<3>(box, 300, Vec<3>(0, 0, 2), Vec<3>(7.3, 7.3, 9), 3, 100);
+    }
+    {  // 3D mixed: x periodic with one cell, y periodic with 4, z bounded, some particles outside
+        Box<3> box;
+        box.length = Vec<3>(2.5, 5.0, 4.0);
+        box.periodic = {true, true, false};
+        check_list_against_brute_force<3>(box, 100, Vec<3>(0, 0, -0.5), Vec<3>(2.5, 5.0, 4.5), 4,
+                                          50);
+    }
+    {  // 3D bounded, 54^3 cells of one cutoff coarsened to the cap of 2^16
+        check_list_against_brute_force<3>(make_box<3>(60, false), 2000, Vec<3>::Zero(),
+                                          Vec<3>::Constant(60), 5, 20);
+    }
+    {  // 2D periodic with one and with 3 cells per axis
+        check_list_against_brute_force<2>(make_box<2>(2.5, true), 30, Vec<2>::Zero(),
+                                          Vec<2>::Constant(2.5), 6, 20);
+        check_list_against_brute_force<2>(make_box<2>(3.5, true), 40, Vec<2>::Zero(),
+                                          Vec<2>::Constant(3.5), 7, 20);
+    }
+    {  // 2D periodic x, bounded y, particles in a band
+        Box<2> box = make_box<2>(9, true, 50);
+        check_list_against_brute_force<2>(box, 200, Vec<2>(0, 1), Vec<2>(9, 12), 8, 50);
+    }
+    {  // 2D bounded, 272^2 cells coarsened to the cap
+        check_list_against_brute_force<2>(make_box<2>(300, false), 3000, Vec<2>::Zero(),
+                                          Vec<2>::Constant(300), 9, 50);
+    }
+}
+
+// Contact states and tangential springs survive the rebuilds: a dense frictional gas with
+// tangential springs (cundall_strack) run with a small skin (a rebuild every few steps) follows the
+// same run with a large skin (few rebuilds) to round-off, which a spring lost or reset at a
+// rebuild would not (the springs carry a sizeable part of the tangential forces).
+template <int D>
+void check_springs_survive_rebuilds() {
+    const Gas<D> g = periodic_gas<D>(200, D == 2 ? 0.45 : 0.35, 21);
+    DemContactSpec spec;
+    spec.t_c = 0.05;
+    spec.e = 0.7;
+    spec.mu = 0.5;
+    const DemContactTable contacts(g.table, DemLaw::cundall_strack, spec);
+    DemSettings small, large;
+    small.skin = 0.01;
+    large.skin = 0.5;
+    DemEngine<D> a(g.box, g.table, contacts, g.particles, small);
+    DemEngine<D> b(g.box, g.table, contacts, g.particles, large);
+    for (int s = 0; s < 300; ++s) {
+        a.step();
+        b.step();
+    }
+    EXPECT_GT(a.counters().rebuilds, 20u);
+    EXPECT_LT(b.counters().rebuilds, a.counters().rebuilds / 4);
+    EXPECT_GT(a.counters().contacts, 100u);
+    EXPECT_EQ(a.counters().contacts, b.counters().contacts);
+    double worst = 0;
+    for (std::size_t i = 0; i < a.particles().size(); ++i) {
+        worst = std::max(worst, (a.particles().v[i] - b.particles().v[i]).norm());
+        worst = std::max(worst, a.box().separation(a.particles().r[i], b.particles().r[i]).norm());
+    }
+    ::testing::Test::RecordProperty("largest_difference_D" + std::to_string(D), sci(worst));
+    EXPECT_LT(worst, 1e-9);
+}
+
+TEST(DemEngine, TangentialSpringsSurviveNeighbourListRebuilds) {
+    check_springs_survive_rebuilds<2>();
+    check_springs_survive_rebuilds<3>();
 }
 
 TEST(DemEngine, TimeStepDefaultsToAFiftiethOfTheShortestContactAndRefusesMoreThanAFifth) {
