@@ -44,7 +44,7 @@ validate: build
 bench: build
 	@mkdir -p results
 	$(BUILD_DIR)/gran_bench --csv results/bench.csv
-	$(BUILD_DIR)/gran_bench_dem | tee results/bench_dem.txt
+	$(BUILD_DIR)/gran_bench_dem --csv results/bench.csv | tee results/bench_dem.txt
 
 # Barrat & Trizac 2002: Tables I-II and Figs. 1-4, 6-9, 13-17 (36 runs on all cores, about 8 min
 # on 2 cores; completed runs are reused). Writes results/barrat-trizac-2002/{figN,tables}.png,

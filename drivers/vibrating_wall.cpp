@@ -15,7 +15,14 @@ constexpr double kPi = std::numbers::pi;
 // At t = 0 with phase 0 the wall is at its outermost position (a piston at its lowest).
 WallMotion motion_for(const Params& p, int side) {
     const std::string wave = p.str("waveform");
-    if (wave == "sawtooth") return WallMotion::sawtooth(p.real("velocity"));
+    if (wave == "sawtooth") {
+        // v0 given, or 2 A f of the real sawtooth (the dem engine moves that one).
+        if (p.has("velocity")) return WallMotion::sawtooth(p.real("velocity"));
+        if (p.has("amplitude") && p.has("frequency"))
+            return WallMotion::sawtooth(2 * p.real("amplitude") * p.real("frequency"));
+        p.fail("waveform", "waveform 'sawtooth' needs `velocity` (v0) or `amplitude` and "
+                           "`frequency` (v0 = 2 A f)");
+    }
     if (!p.has("amplitude") || !p.has("frequency")) {
         p.fail("waveform", "waveform '" + wave + "' needs `amplitude` and `frequency`");
     }
@@ -36,8 +43,13 @@ class VibratingWall final : public WallDriver<D> {
                         motion_for(p, 0), motion_for(p, 1)),
           motion_(motion_for(p, 0)),
           waveform_(p.str("waveform")) {
-        if (waveform_ == "sawtooth" && !p.has("velocity"))
-            p.fail("waveform", "waveform 'sawtooth' needs `velocity` (v0)");
+        if (waveform_ == "sawtooth" && p.has("amplitude") && p.has("frequency")) {
+            const double a = p.real("amplitude"), f = p.real("frequency");
+            if (p.has("velocity") && std::abs(p.real("velocity") - 2 * a * f) > 1e-9 * 2 * a * f)
+                p.fail("velocity", "sawtooth: velocity must equal 2 amplitude frequency");
+            this->dem_motion_ = {WallMotion::sawtooth_ramp(a, f, p.real("phase"), +1),
+                                 WallMotion::sawtooth_ramp(a, f, p.real("phase"), -1)};
+        }
         const double v = peak_velocity();
         if (waveform_ != "sawtooth" && !(v > 0))
             p.fail("amplitude", "a vibrating wall needs amplitude > 0 and frequency > 0");
@@ -61,7 +73,9 @@ class VibratingWall final : public WallDriver<D> {
     }
 
     double drive_period() const override {
-        return waveform_ == "sawtooth" ? 0.0 : 2 * kPi / motion_.omega;
+        if (waveform_ == "sawtooth")
+            return this->dem_motion_[0].omega > 0 ? 2 * kPi / this->dem_motion_[0].omega : 0.0;
+        return 2 * kPi / motion_.omega;
     }
 
     void write(h5::Group& g, YAML::Node& summary) const override {
@@ -96,7 +110,8 @@ const bool registered = register_plugin<Driver, VibratingWall>(
                     "waveform", "two_parabolas", {"two_parabolas", "sinusoid", "sawtooth"},
                     "wall motion: two_parabolas z = +-(A/2)((t-t_n)^2/t0^2 - 1), t0 = 1/(4f), peak "
                     "velocity 4 A f; sinusoid z = A sin(2 pi f t + phi), peak velocity 2 pi f A; "
-                    "sawtooth: fixed position, every particle meets it at speed v0"),
+                    "sawtooth: fixed position, every particle meets it at speed v0 (event_driven; on the "
+                    "dem engine a real sawtooth z = A (2 frac(f t) - 1), v0 = 2 A f)"),
                 optional(
                     real("amplitude", "", "length",
                          "A: peak-to-peak excursion for two_parabolas, half of it (A of A sin) "
@@ -106,7 +121,9 @@ const bool registered = register_plugin<Driver, VibratingWall>(
                 real("phase", "0", "rad", "phase; 0: the wall starts at its outermost position",
                      -1e308, 1e308),
                 optional(
-                    real("velocity", "", "velocity", "sawtooth: wall speed v0", 0, 1e308, true))};
+                    real("velocity", "", "velocity",
+                         "sawtooth: wall speed v0 (or give amplitude and frequency: v0 = 2 A f)", 0,
+                         1e308, true))};
             for (auto& r : wall_restitution_schema()) s.push_back(r);
             return s;
         }(),

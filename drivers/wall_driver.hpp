@@ -35,7 +35,8 @@ class WallDriver : public Driver<D> {
           params_(params),
           motion_{lower_motion, upper_motion},
           what_(std::move(what)),
-          rng_(make_rng(info.seed + 7919ull * (info.index + 1), Stream::Driver)) {
+          rng_(make_rng(info.seed + 7919ull * (info.index + 1), Stream::Driver)),
+          dem_motion_{lower_motion, upper_motion} {
         const std::string axis = p.str("axis");
         axis_ = axis == "x" ? 0 : (axis == "y" ? 1 : 2);
         if (axis_ >= D) p.fail("axis", fmt::format("axis {} does not exist in {}D", axis, D));
@@ -69,16 +70,16 @@ class WallDriver : public Driver<D> {
                    "speed law comes from the contact law itself (engine.contact_law: "
                    "hertz_mindlin)";
         }
-        for (const auto& m : motion_) {
+        for (const auto& m : dem_motion_) {
             if (m.kind == WallMotion::Kind::sawtooth) {
                 refusal_key_ = "waveform";
-                return "the sawtooth limit has no wall position; the dem engine needs a wall that "
-                       "moves (two_parabolas or sinusoid)";
+                return "the sawtooth limit (A -> 0) has no wall position; on the dem engine give "
+                       "vibrating_wall `amplitude` and `frequency` (a real sawtooth, v0 = 2 A f)";
             }
         }
         try {
-            if (lower_) engine.set_wall(axis_, 0, motion_[0], params_.restitution.e_const);
-            if (upper_) engine.set_wall(axis_, 1, motion_[1], params_.restitution.e_const);
+            if (lower_) engine.set_wall(axis_, 0, dem_motion_[0], params_.restitution.e_const);
+            if (upper_) engine.set_wall(axis_, 1, dem_motion_[1], params_.restitution.e_const);
         } catch (const std::invalid_argument& e) {
             refusal_key_ = "restitution";
             return e.what();
@@ -114,6 +115,8 @@ class WallDriver : public Driver<D> {
     std::string refusal_key_ = "type";
 
   protected:
+    // The motion on the dem engine where it differs (a real sawtooth for the sawtooth limit).
+    std::array<WallMotion, 2> dem_motion_;
     int axis_ = 0;
     bool lower_ = true, upper_ = true;
     const EventDrivenEngine<D>* engine_ = nullptr;

@@ -18,6 +18,9 @@
 //  - sawtooth: Barrat & Trizac 2002's virtual vibrating wall (the limit A -> 0, A f fixed): the
 //    position stays 0 and every particle meets a wall moving into the gas with speed v0, so
 //    velocity() reports v0 and wall_velocity() reports inward * v0, as species/wall_rules.hpp.
+//  - sawtooth_ramp: the real wall of which `sawtooth` is the limit, for the soft-sphere engine
+//    (which needs a wall position): z = s A (2 frac(f t + phase / 2 pi) - 1), moving at the
+//    constant speed v0 = 2 A f into the gas (s = sign of v0) and jumping back once per period.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -28,7 +31,7 @@
 namespace gran {
 
 struct WallMotion {
-    enum class Kind { fixed, sinusoid, parabolic_piston, sawtooth };
+    enum class Kind { fixed, sinusoid, parabolic_piston, sawtooth, sawtooth_ramp };
 
     Kind kind = Kind::fixed;
     double amplitude = 0;  // sinusoid: A of A sin(omega t + phase); piston: peak-to-peak A
@@ -45,6 +48,13 @@ struct WallMotion {
         return {Kind::parabolic_piston, peak_to_peak, 2 * std::numbers::pi * frequency, phase, 0};
     }
     static WallMotion sawtooth(double v0) { return {Kind::sawtooth, 0, 0, 0, v0}; }
+    // Amplitude A (half the excursion), frequency f; direction +1 (moving to larger coordinates,
+    // a lower wall) or -1.
+    static WallMotion sawtooth_ramp(double amplitude, double frequency, double phase,
+                                    double direction) {
+        return {Kind::sawtooth_ramp, amplitude, 2 * std::numbers::pi * frequency, phase,
+                (direction >= 0 ? 2.0 : -2.0) * amplitude * frequency};
+    }
 
     // The wall does not move (its gap to a particle is a single quadratic in time).
     bool is_static() const {
@@ -55,7 +65,7 @@ struct WallMotion {
     }
     // Largest |position(t)|: every position lies in [-reach, reach].
     double reach() const {
-        if (kind == Kind::sinusoid) return std::abs(amplitude);
+        if (kind == Kind::sinusoid || kind == Kind::sawtooth_ramp) return std::abs(amplitude);
         if (kind == Kind::parabolic_piston) return 0.5 * std::abs(amplitude);
         return 0;
     }
@@ -86,6 +96,11 @@ struct WallMotion {
                 return amplitude * std::sin(omega * t + phase);
             case Kind::parabolic_piston:
                 return is_static() ? 0 : piston_parabola(t).z;
+            case Kind::sawtooth_ramp: {
+                if (is_static()) return 0;
+                const double x = omega * t / (2 * std::numbers::pi) + phase / (2 * std::numbers::pi);
+                return (v0 >= 0 ? 1.0 : -1.0) * amplitude * (2 * (x - std::floor(x)) - 1);
+            }
             default:
                 return 0;
         }
@@ -98,6 +113,8 @@ struct WallMotion {
                 return is_static() ? 0 : piston_parabola(t).dz;
             case Kind::sawtooth:
                 return v0;
+            case Kind::sawtooth_ramp:
+                return is_static() ? 0 : v0;
             default:
                 return 0;
         }

@@ -167,6 +167,26 @@ TEST(WallMotion, SinusoidFixedAndSawtooth) {
     EXPECT_TRUE(saw.is_static());
 }
 
+// The real sawtooth (dem engine): rises from -A to A at v0 = 2 A f into the gas, jumps back once per
+// period; the upper wall's mirrors it.
+TEST(WallMotion, SawtoothRampRisesAtTwiceAmplitudeTimesFrequencyAndJumpsBackEachPeriod) {
+    const double a = 0.2, f = 2.5, T = 1 / f;
+    const WallMotion lo = WallMotion::sawtooth_ramp(a, f, 0, +1);
+    const WallMotion up = WallMotion::sawtooth_ramp(a, f, 0, -1);
+    EXPECT_FALSE(lo.is_static());
+    EXPECT_DOUBLE_EQ(lo.reach(), a);
+    EXPECT_DOUBLE_EQ(lo.period(), T);
+    for (double t : {0.0, 0.1 * T, 0.5 * T, 0.9 * T, 3.25 * T}) {
+        const double x = t / T - std::floor(t / T);
+        EXPECT_NEAR(lo.position(t), a * (2 * x - 1), 1e-12) << t;
+        EXPECT_NEAR(up.position(t), -lo.position(t), 1e-12) << t;
+        EXPECT_DOUBLE_EQ(lo.velocity(t), 2 * a * f);
+        EXPECT_DOUBLE_EQ(up.velocity(t), -2 * a * f);
+    }
+    // the position is the integral of the velocity within a period
+    EXPECT_NEAR(lo.position(0.7 * T) - lo.position(0.2 * T), 0.5 * T * 2 * a * f, 1e-12);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Contacts against the brute force
 

@@ -153,6 +153,33 @@ run: {{unit: time, equilibration: 50, measurement: 3000, sample_interval: 0.0913
     agree(ed["local_temperature"]["T_y"], dem["local_temperature"]["T_y"], "T_y (particle average)");
 }
 
+// The sawtooth wall of Barrat & Trizac 2002 is the limit A -> 0 at fixed v0 = 2 A f of a real
+// sawtooth; the dem engine moves the real one. With the contact much shorter than the period
+// (t_c = 0.007 << 2 A / v0 = 0.4) and A well below the mean free path, the vibrated gas (100 disks,
+// alpha = 0.9, walls at both ends) has the event-driven temperature within 3 sigma.
+TEST(DemRun, RealSawtoothWallGivesTheTemperatureOfTheEventDrivenSawtoothLimit) {
+    auto scene = [](const std::string& engine) {
+        return fmt::format(R"(
+dimension: 2
+seed: 3
+box: {{lengths: [20, 20], periodic: [true, false]}}
+species: [{{name: a, count: 100}}]
+interactions: {{alpha: 0.9}}
+engine: {{type: {}, stiffness: 2e5}}
+drivers: [{{type: vibrating_wall, axis: y, side: both, waveform: sawtooth, amplitude: 0.2, frequency: 2.5}}]
+observables: [{{type: temperatures}}]
+run: {{unit: time, equilibration: 50, measurement: 600, sample_interval: 0.5}}
+)",
+                           engine);
+    };
+    const YAML::Node ed = testing::run_yaml(scene("event_driven"), "ed")["observables"];
+    const YAML::Node dem = testing::run_yaml(scene("dem"), "dem")["observables"];
+    const YAML::Node a = ed["temperatures"]["T_mixture"], b = dem["temperatures"]["T_mixture"];
+    const double sigma = std::hypot(error(a), error(b));
+    EXPECT_LT(sigma, 0.02 * value(a));
+    EXPECT_NEAR(value(a), value(b), 3 * sigma) << "event-driven " << value(a) << " dem " << value(b);
+}
+
 // What the dem engine cannot run is refused before running, naming file, line and key.
 TEST(DemRun, RefusesWhatTheDemEngineCannotRunNamingFileLineAndKey) {
     const std::string base = R"(dimension: 2
