@@ -11,7 +11,7 @@ GRAN_WERROR ?= $(if $(CI),ON,OFF)
 CMAKE_FLAGS ?=
 
 .PHONY: deps configure build demo test validate bench format sanitize clean reproduce-barrat-trizac-2002 \
-  reproduce-mcnamara-falcon-2005
+  reproduce-mcnamara-falcon-2005 reproduce-bhateja-2016
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \
@@ -67,6 +67,19 @@ reproduce-mcnamara-falcon-2005: build
 	  $(BUILD_DIR)/gran study studies/mcnamara-falcon-2005/$$s.yaml -o $(MF2005_OUT) || exit 1; \
 	done
 	$(PY) studies/mcnamara-falcon-2005/figures.py $(MF2005_OUT)
+
+# Bhateja, Sharma & Singh 2016: Figs. 2, 4, 6-16 and Tables I-III (about 330 runs, 20-40 min on 2
+# cores; completed runs are reused, then about 15 s). Writes results/bhateja-2016/comparison.csv
+# (paper vs measured, studies/bhateja-2016/analysis.py) and figures/*.png (figures.py).
+BH2016_STUDIES := rest-2d rest-3d sweep-2d sweep-3d lid-g0 engines-2d sensitivity-3d amplitude-2d \
+  parameters-2d profiles-3d
+BH2016_OUT ?= results/bhateja-2016
+reproduce-bhateja-2016: build
+	for s in $(BH2016_STUDIES); do \
+	  $(BUILD_DIR)/gran study studies/bhateja-2016/$$s.yaml -o $(BH2016_OUT) || exit 1; \
+	done
+	$(PY) studies/bhateja-2016/analysis.py $(BH2016_OUT)
+	$(PY) studies/bhateja-2016/figures.py $(BH2016_OUT)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

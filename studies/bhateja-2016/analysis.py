@@ -1,0 +1,563 @@
+#!/usr/bin/python3
+"""Bhateja, Sharma & Singh, Phys. Fluids 28, 043301 (2016): the measured numbers against the paper's.
+
+Usage: /usr/bin/python3 studies/bhateja-2016/analysis.py [RESULTS_DIR]
+
+Reads the study tables (`<study>.study.csv`, `lid-g0.fits.csv`) and per-run results (`<run>.h5`,
+profiles) of the studies in this folder from RESULTS_DIR (default results/bhateja-2016) and writes
+RESULTS_DIR/comparison.csv (`quantity,paper,measured,error`, rewritten from scratch). `paper` is
+the number the paper prints (read from paper.yaml), empty where the paper gives none; `error` is the
+one-standard-error bar of `measured` (gran's jackknife block errors, fit covariances, propagated),
+empty when there is none. A study whose results are missing is skipped with a note.
+
+Conventions (README.md): Tbar = T_z / (m V_p^2) with T_z = m <w'^2> / 2 about the local
+(slab, drive phase) mean velocity; the vertical axis is z in 3D and y in 2D (gran names the
+component after the axis, so the 2D "T_z" of the paper is gran's T_y). Two averages: `volume`
+(mean of the slab temperatures over the bed, the paper's Eq. (1)) and `particle` (each grain once).
+Units: d, m, sqrt(d/g): W = V_p^2, T / (m g d) = T.
+"""
+import csv
+import math
+import re
+import sys
+from pathlib import Path
+
+import h5py
+import numpy as np
+import yaml
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fitting import MODELS, fit_model, loglog_slope  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+PAPER = yaml.safe_load((HERE / "paper.yaml").read_text())
+LT = "observables.local_temperature."
+DEFINITIONS = {"volume": "_volume_scaled", "particle": "_scaled"}
+W_PAPER_END = PAPER["inferred"]["W_sweep_range"][1]  # 89.43: 4000 rpm, the end of the paper's sweep
+W_ACCEPT = (10, 20, 50, 100)  # acceptance check of the brief
+W2_TOLERANCE = 0.10  # W_2: smallest W beyond which Tbar stays within 10% of its value at max W
+LIFT_OFF = 1.0  # W = Gamma for A = d: no lift-off below 1 (T_z = 0 in the paper up to W = 0.89)
+
+
+# --- reading ----------------------------------------------------------------------------------
+
+def _float(text):
+    return float(text) if text not in ("", None) else math.nan
+
+
+class Study:
+    """The runs of one study: table rows, grouped by point, with the scaled temperatures."""
+
+    def __init__(self, directory, name):
+        self.directory, self.name = Path(directory), name
+        path = self.directory / f"{name}.study.csv"
+        if not path.exists():
+            raise FileNotFoundError(f"{path} is missing (make reproduce-bhateja-2016)")
+        with open(path, newline="") as f:
+            self.rows = list(csv.DictReader(f))
+
+    @staticmethod
+    def point(row):
+        """The point of a run: its name up to the first swept key."""
+        return re.split(r"_(?:frequency|sample_interval|measurement)[-0-9.e+]", row["run"])[0]
+
+    def points(self):
+        return sorted({self.point(r) for r in self.rows})
+
+    @staticmethod
+    def vertical(row):
+        """Name of the vertical component: T_z (3D) or T_y (2D, vibration along y)."""
+        return "T_z" if row.get(LT + "T_z") not in (None, "") else "T_y"
+
+    @staticmethod
+    def get(row, key):
+        return _float(row.get(key)), _float(row.get(key + ".error"))
+
+    def tbar(self, row, definition="volume", component=None):
+        """Scaled temperature T_a / (m V_p^2) of a run: (value, error). component None: vertical;
+        'T_x' horizontal; 'T' the mean over the d_f components."""
+        c = component or self.vertical(row)
+        return self.get(row, LT + c + DEFINITIONS[definition])
+
+    def temperature(self, row, definition="volume", component=None):
+        """Unscaled T_a in units m g d: (value, error)."""
+        c = component or self.vertical(row)
+        return self.get(row, LT + c + ("_volume" if definition == "volume" else ""))
+
+    @staticmethod
+    def w(row):
+        return _float(row[LT + "W"])
+
+    @staticmethod
+    def vp(row):
+        return _float(row[LT + "peak_velocity"])
+
+    def runs(self, point):
+        """The runs of a point sorted by W."""
+        return sorted((r for r in self.rows if self.point(r) == point), key=self.w)
+
+    def curve(self, point, definition="volume", component=None, scaled=True):
+        """(W, value, error) arrays of one point."""
+        runs = self.runs(point)
+        f = self.tbar if scaled else self.temperature
+        ve = np.array([f(r, definition, component) for r in runs]).reshape(-1, 2)
+        return np.array([self.w(r) for r in runs]), ve[:, 0], ve[:, 1]
+
+    def at(self, point, w, rel=0.01):
+        """The run of a point at W (within rel)."""
+        for r in self.runs(point):
+            if abs(self.w(r) / w - 1) < rel:
+                return r
+        raise KeyError(f"{self.name}: no run of {point} at W = {w}")
+
+    def h5(self, row):
+        return h5py.File(self.directory / f"{row['run']}.h5", "r")
+
+    def profile(self, row):
+        """Local profiles of a run: dict z, T (vertical), T_error, phi, phi_error, grains, bed
+        (number of slabs of the volume average, counted from the bottom), W, Vp."""
+        with self.h5(row) as f:
+            g = f["observables/local_temperature"]
+            c = "T_z" if "T_z_profile" in g else "T_y"
+            return {"z": g["z"][:], "T": g[c + "_profile"][:], "T_error": g[c + "_profile_error"][:],
+                    "phi": g["phi"][:], "phi_error": g["phi_error"][:],
+                    "grains": g["grains_per_slab"][:], "bed": int(g["bed_slabs"][()]),
+                    "W": float(g["W"][()]), "Vp": float(g["peak_velocity"][()])}
+
+
+def load(directory, name):
+    """A Study, or None (with a note) when its results are not there yet."""
+    try:
+        return Study(directory, name)
+    except FileNotFoundError as e:
+        print(f"skipped: {e}")
+        return None
+
+
+# --- derived quantities -----------------------------------------------------------------------
+
+def peak(w, y):
+    """W_f (argmax on the grid) and the index of the peak."""
+    k = int(np.nanargmax(y))
+    return w[k], k
+
+
+def w2(w, y, tol=W2_TOLERANCE):
+    """W_2: the smallest W beyond which Tbar stays within tol of its value at the largest W
+    (searched from the peak on)."""
+    _, k0 = peak(w, y)
+    inside = np.abs(y / y[-1] - 1) <= tol
+    k = len(w) - 1
+    while k - 1 >= k0 and inside[k - 1]:
+        k -= 1
+    return w[k]
+
+
+def alpha_over(w, vp, t, lo, hi):
+    """alpha of T ~ V_p^alpha over lo <= W <= hi (T > 0): (alpha, error, points)."""
+    m = (w >= lo * (1 - 1e-6)) & (w <= hi * (1 + 1e-6)) & (t > 0)
+    a, e = loglog_slope(vp[m], t[m])
+    return a, e, int(m.sum())
+
+
+def ratio(a, ea, b, eb):
+    """a / b and its error (independent errors)."""
+    r = a / b
+    return r, abs(r) * math.hypot(ea / a, eb / b)
+
+
+def relchange(a, ea, b, eb):
+    """(a - b) / b and its error."""
+    r, e = ratio(a, ea, b, eb)
+    return r - 1, e
+
+
+# --- the comparison rows ----------------------------------------------------------------------
+
+def table3_rows(sweeps):
+    """Table III: a (1 + c W^-b) and a (1 + c e^-bW) on Tbar_z from W_f to the paper's end of the
+    sweep (W <= 89.43) and to the end of ours (W <= 135), both temperature definitions."""
+    paper = {(r["system"], r["fit"]): r for r in PAPER["fig8_table3"]["rows"]}
+    rows = []
+    for dim, study in sweeps.items():
+        if study is None:
+            continue
+        point = f"sweep{dim.lower()}_rough"
+        for definition in DEFINITIONS:
+            w, y, e = study.curve(point, definition)
+            wf, _ = peak(w, y)
+            for rng, hi in (("paper_range", W_PAPER_END), ("full_range", np.inf)):
+                m = (w >= wf) & (w <= hi)
+                for form in MODELS:
+                    fit = fit_model(form, w[m], y[m], e[m])
+                    ref = paper[(f"{dim} rough", form)]
+                    tag = f"table3_{dim.lower()}_rough_{form}_{definition}_{rng}"
+                    for k, par in enumerate("abc"):
+                        rows.append((f"{tag}_{par}", ref[par], fit["p"][k], fit["err"][k]))
+                    rows.append((f"{tag}_R", ref["correlation"], math.sqrt(max(fit["r2"], 0)), None))
+                    rows.append((f"{tag}_R2", None, fit["r2"], None))
+                    rows.append((f"{tag}_chi2_reduced", None, fit["chi2_reduced"], None))
+                    rows.append((f"{tag}_W_from", None, w[m][0], None))
+                    rows.append((f"{tag}_W_to", None, w[m][-1], None))
+                    rows.append((f"{tag}_points", None, fit["n"], None))
+    return rows
+
+
+def paper_algebraic(dim, w):
+    """Tbar_z of the paper's algebraic Table III fit (rough, `dim` = '2D' or '3D')."""
+    r = next(r for r in PAPER["fig8_table3"]["rows"]
+             if r["system"] == f"{dim} rough" and r["fit"] == "algebraic")
+    return r["a"] * (1 + r["c"] * w ** -r["b"])
+
+
+def acceptance_rows(study, dim, points, prefix):
+    """Tbar_z at W = 10, 20, 50, 100 against the paper's algebraic fit, with the relative
+    deviation (measured - paper) / paper; both definitions."""
+    rows = []
+    for point in points:
+        for definition in DEFINITIONS:
+            for wt in W_ACCEPT:
+                try:
+                    run = study.at(point, wt)
+                except KeyError:
+                    continue
+                v, e = study.tbar(run, definition)
+                ref = paper_algebraic(dim, study.w(run))
+                tag = f"{prefix}_{point}_{definition}_W{wt}"
+                rows.append((tag, round(ref, 4), v, e))
+                rows.append((tag + "_reldev", None, v / ref - 1, e / ref))
+    return rows
+
+
+def fig2_rows(sweeps):
+    """Fig. 2: W_f and the peak of Tbar_z per case, the decay after it (value at W = 85.01, the
+    last of the paper's printed W before 89.43, over the peak) and the largest volume fraction at
+    W_f (paper: "about 0.2")."""
+    rows = []
+    for dim, study in sweeps.items():
+        if study is None:
+            continue
+        for case in ("smooth", "rough"):
+            point = f"sweep{dim.lower()}_{case}"
+            for definition in DEFINITIONS:
+                w, y, e = study.curve(point, definition)
+                wf, k = peak(w, y)
+                tag = f"fig2_{dim.lower()}_{case}_{definition}"
+                rows.append((f"{tag}_W_f", None, wf, None))
+                rows.append((f"{tag}_peak", None, y[k], e[k]))
+                j = int(np.argmin(np.abs(w - 85.01)))
+                rows.append((f"{tag}_T_W{w[j]:.4g}_over_peak", None, *ratio(y[j], e[j], y[k], e[k])))
+                j0 = int(np.argmin(np.abs(w - 0.894)))
+                rows.append((f"{tag}_T_W{w[j0]:.3g}_unfluidized", 0, y[j0], e[j0]))
+            w, y, _ = study.curve(point, "volume")
+            prof = study.profile(study.runs(point)[peak(w, y)[1]])
+            bed = slice(0, prof["bed"])
+            k = int(np.argmax(prof["phi"][bed]))
+            rows.append((f"fig2_{dim.lower()}_{case}_max_phi_profile_at_W_f", 0.2, prof["phi"][k],
+                         prof["phi_error"][k]))
+            rows.append((f"fig2_{dim.lower()}_{case}_bed_mean_phi_at_W_f", 0.2,
+                         float(np.mean(prof["phi"][bed])), None))
+    return rows
+
+
+def table1_rows(sweeps):
+    """Table I: alpha of T_z ~ V_p^alpha over the experiments' W ranges (rough systems). Warr's
+    range 0.5-9 starts below lift-off (W < 1: no fluidisation, T_z ~ 0), so the fit uses W > 1.
+    The 3D ranges are drawn only on Fig. 2: measured left empty."""
+    rows = []
+    ref = {r["ref"].split(" (")[0]: r["alpha_paper"] for r in PAPER["table1"]["rows"]}
+    s2 = sweeps.get("2D")
+    if s2 is not None:
+        for definition in DEFINITIONS:
+            w, t, _ = s2.curve("sweep2d_rough", definition, scaled=False)
+            vp = np.sqrt(w)  # V_p / sqrt(g d) = sqrt(W)
+            for name, lo, hi, paper in (("warr", LIFT_OFF, 9, ref["Warr et al."]),
+                                        ("feitosa_menon", 44, 135, ref["Feitosa and Menon"]),
+                                        ("feitosa_menon_to_W89", 44, W_PAPER_END, None)):
+                a, e, n = alpha_over(w, vp, t, lo, hi)
+                rows.append((f"table1_alpha_{name}_2d_rough_{definition}", paper, a, e))
+    for name in ("Wildman et al.", "Yang and Candela", "Windows-Yule and Parker"):
+        key = name.split()[0].lower().replace("-", "_")
+        rows.append((f"table1_alpha_{key}_3d_rough_range_not_in_text", ref[name], math.nan, None))
+    return rows
+
+
+def rest_height(directory, dim, case):
+    """h_cm of the settled bed (rest-<dim>.yaml)."""
+    rest = load(directory, f"rest-{dim.lower()}")
+    if rest is None:
+        return None
+    run = next(r for r in rest.rows if rest.point(r) == f"rest{dim.lower()}_{case}")
+    return rest.get(run, "observables.barycentric_height.h_cm")
+
+
+def table2_fig7_rows(directory, sweeps):
+    """Table II (alpha_h of Delta h_cm = h_cm - h_rest ~ V_p^alpha_h over Warr's range, 2D rough)
+    and Fig. 7 (Tbar_z / Delta hbar_cm, Delta hbar_cm = Delta h_cm / (V_p^2 / g), i.e.
+    T_z / (m g Delta h_cm), at the paper's printed W)."""
+    rows = []
+    for dim, study in sweeps.items():
+        if study is None:
+            continue
+        rest = rest_height(directory, dim, "rough")
+        if rest is None:
+            continue
+        runs = study.runs(f"sweep{dim.lower()}_rough")
+        w = np.array([study.w(r) for r in runs])
+        h = np.array([study.get(r, "observables.barycentric_height.h_cm") for r in runs])
+        dh, dh_err = h[:, 0] - rest[0], np.hypot(h[:, 1], rest[1])
+        if dim == "2D":
+            a, e, _ = alpha_over(w, np.sqrt(w), dh, LIFT_OFF, 9)
+            rows.append(("table2_alpha_h_warr_2d_rough", PAPER["table2"]["rows"][0]["alpha_h_paper"],
+                         a, e))
+        for wt in (2.01, 5.58, 22.35, 50.3, 85.01, 135):
+            k = int(np.argmin(np.abs(w - wt)))
+            if abs(w[k] / wt - 1) > 0.01:
+                continue
+            for definition in DEFINITIONS:
+                t, te = study.temperature(runs[k], definition)
+                rows.append((f"fig7_{dim.lower()}_rough_{definition}_Tz_over_mg_dh_W{wt}", None,
+                             *ratio(t, te, dh[k], dh_err[k])))
+        rows.append((f"fig7_{dim.lower()}_rough_h_rest", None, rest[0], None))
+    for r in PAPER["table2"]["rows"][1:]:
+        key = r["ref"].split()[0].lower().replace("-", "_")
+        rows.append((f"table2_alpha_h_{key}_3d_rough_range_not_in_text", r["alpha_h_paper"],
+                     math.nan, None))
+    return rows
+
+
+def fig6_rows(directory):
+    """Fig. 6: alpha of T_z ~ V_p^alpha with g = 0 under a lid (lid-g0.fits.csv), paper 2."""
+    path = Path(directory) / "lid-g0.fits.csv"
+    if not path.exists():
+        print(f"skipped: {path} is missing")
+        return []
+    with open(path, newline="") as f:
+        fits = list(csv.DictReader(f))
+    rows = []
+    for r in fits:
+        definition = "particle" if r["fit"].startswith("lid_alpha_particle") else "volume"
+        point = r["group"] or r["fit"]
+        rows.append((f"fig6_alpha_{point}_{definition}", PAPER["fig6"]["result_alpha"],
+                     _float(r["theta"]), _float(r["theta_error"])))
+    return rows
+
+
+def parameter_curves(directory, sweeps):
+    """Figs. 9-10: {point: (W, Vp, Tbar, Tbar error, T)} for the variants of parameters-2d.yaml and
+    the canonical rough 2D system on the same W grid (from sweep-2d.yaml)."""
+    study = load(directory, "parameters-2d")
+    if study is None:
+        return {}
+    out = {}
+    for point in study.points():
+        w, y, e = study.curve(point, "volume")
+        _, t, _ = study.curve(point, "volume", scaled=False)
+        out[point] = (w, np.sqrt(w), y, e, t)
+    s2 = sweeps.get("2D")
+    if s2 is not None and out:
+        grid = next(iter(out.values()))[0]
+        runs = [s2.at("sweep2d_rough", wv) for wv in grid]
+        y = np.array([s2.tbar(r, "volume") for r in runs])
+        t = np.array([s2.temperature(r, "volume")[0] for r in runs])
+        out["par2d_canonical"] = (grid, np.sqrt(grid), y[:, 0], y[:, 1], t)
+    return out
+
+
+def parameter_alphas(curves):
+    """{point: (W_f, W_2, alpha, alpha error, points)}: T ~ V_p^alpha over [W_f, W_2]."""
+    out = {}
+    for point, (w, vp, y, _, t) in curves.items():
+        wf, wtwo = peak(w, y)[0], w2(w, y)
+        out[point] = (wf, wtwo, *alpha_over(w, vp, t, wf, wtwo))
+    return out
+
+
+def fig9_10_rows(curves):
+    """alpha over [W_f, W_2] per variant; k_n effect; the trends in e_p and N."""
+    rows, alpha = [], {}
+    for point, (wf, wtwo, a, ae, n) in sorted(parameter_alphas(curves).items()):
+        alpha[point] = (a, ae)
+        paper = PAPER["fig10"]["alpha_deep_bed"] if point in ("par2d_N6", "par2d_N8") else None
+        rows += [(f"fig10_{point}_W_f", None, wf, None), (f"fig10_{point}_W_2", None, wtwo, None),
+                 (f"fig10_{point}_alpha_Wf_W2", paper, a, ae),
+                 (f"fig10_{point}_alpha_points", None, n, None)]
+    if "par2d_canonical" in curves:
+        w0, _, y0, e0, _ = curves["par2d_canonical"]
+        for kn in ("par2d_kn2e4", "par2d_kn2e6"):
+            if kn in curves:
+                m = w0 > LIFT_OFF
+                dev = np.abs(curves[kn][2][m] / y0[m] - 1)
+                k = int(np.argmax(dev))
+                yk, ek = curves[kn][2][m][k], curves[kn][3][m][k]
+                err = ratio(yk, ek, y0[m][k], e0[m][k])[1]
+                rows.append((f"fig9a_{kn}_max_rel_diff_vs_kn2e5", 0, dev[k], err))
+    order = {"e_p": ("par2d_e0.7", "par2d_e0.8", "par2d_canonical", "par2d_e0.95"),
+             "N": ("par2d_N2", "par2d_N3", "par2d_canonical", "par2d_N6", "par2d_N8"),
+             "mu_p": ("par2d_mu0.1", "par2d_canonical", "par2d_mu0.8")}
+    for par, pts in order.items():
+        a = [alpha[p][0] for p in pts if p in alpha]
+        if len(a) > 1:
+            rows.append((f"fig10_alpha_{par}_monotonic_increasing", None,
+                         int(all(np.diff(a) > 0)), None))
+            rows.append((f"fig10_alpha_{par}_range_max_minus_min", None, max(a) - min(a), None))
+    if "par2d_N3" in alpha and "par2d_canonical" in alpha:
+        rows.append(("fig10_alpha_N4_minus_N3", 0,
+                     alpha["par2d_canonical"][0] - alpha["par2d_N3"][0],
+                     math.hypot(alpha["par2d_canonical"][1], alpha["par2d_N3"][1])))
+    return rows
+
+
+def fig11_data(directory):
+    """amplitude-2d.yaml: {(A/d, W): (T_z/(m g d) value, error)} for both definitions."""
+    study = load(directory, "amplitude-2d")
+    if study is None:
+        return None
+    out = {d: {} for d in DEFINITIONS}
+    for r in study.rows:
+        m = re.search(r"_A([0-9.]+)_W([0-9.]+)$", study.point(r))
+        amp, wv = float(m.group(1)), float(m.group(2))
+        for d in DEFINITIONS:
+            out[d][(amp, wv)] = study.temperature(r, d)
+    return out
+
+
+def fig11_rows(data):
+    """Fig. 11: mean relative change of T_z/(m g d) from A/d = 1 to 0.1 (paper -15%), mean
+    |change| within A/d 0.1-0.5 (paper 3%), and along W 4.52 -> 8.04 at A/d = 1 (paper +50%)."""
+    if data is None:
+        return []
+    res = PAPER["fig11"]["results"]
+    rows = []
+    for d, t in data.items():
+        ws = sorted({w for _, w in t})
+
+        def mean_change(a_to, a_from, absolute=False):
+            ch = [relchange(*t[(a_to, w)], *t[(a_from, w)]) for w in ws]
+            v = [abs(c[0]) if absolute else c[0] for c in ch]
+            return float(np.mean(v)), math.sqrt(sum(c[1] ** 2 for c in ch)) / len(ch)
+
+        rows.append((f"fig11_{d}_mean_relchange_A1_to_A0.1",
+                     -res["dashed_decrease_A_1_to_0.1_percent"] / 100, *mean_change(0.1, 1)))
+        rows.append((f"fig11_{d}_mean_abs_relchange_A0.1_to_A0.5",
+                     res["dashed_change_A_0.1_to_0.5_percent"] / 100,
+                     *mean_change(0.5, 0.1, absolute=True)))
+        rows.append((f"fig11_{d}_relchange_W4.52_to_W8.04_A1",
+                     res["solid_increase_percent"] / 100, *relchange(*t[(1.0, ws[-1])],
+                                                                    *t[(1.0, ws[0])])))
+    return rows
+
+
+def engines_rows(directory):
+    """engines-2d.yaml: T_z of the DEM runs (k_n = 2e3 ... 2e6) over the event-driven one, per W."""
+    study = load(directory, "engines-2d")
+    if study is None:
+        return []
+    rows = []
+    for ref in study.runs("engines_event_driven"):
+        wv = study.w(ref)
+        for point in study.points():
+            if point == "engines_event_driven":
+                continue
+            try:
+                run = study.at(point, wv)
+            except KeyError:
+                continue
+            for d in DEFINITIONS:
+                rows.append((f"engines_{point.removeprefix('engines_')}_over_event_driven_{d}_W{wv:.3g}",
+                             None, *ratio(*study.tbar(run, d), *study.tbar(ref, d))))
+    return rows
+
+
+def profile_rows(directory, sweeps):
+    """Figs. 12-16: height of the hottest slab (bed slabs only) at W = 22.35 for N = 4, 6, 8
+    (paper 7-10 d for shallow beds); same for the N = 4 smooth and rough 3D sweep."""
+    rows = []
+    study = load(directory, "profiles-3d")
+    if study is not None:
+        for point in study.points():
+            try:
+                run = study.at(point, 22.35)
+            except KeyError:
+                continue
+            p = study.profile(run)
+            k = int(np.argmax(p["T"][:p["bed"]]))
+            rows.append((f"fig12_W22.35_{point}_hottest_slab_z", "7-10" if point.endswith("N4")
+                         else None, p["z"][k], 0.5))
+    s3 = sweeps.get("3D")
+    if s3 is not None:
+        for case in ("smooth", "rough"):
+            for wt in (5.58, 22.35, 50.3, 85.01):
+                p = s3.profile(s3.at(f"sweep3d_{case}", wt))
+                bed = slice(0, p["bed"])
+                k = int(np.argmax(p["T"][bed]))
+                j = int(np.argmax(p["phi"][bed]))
+                rows.append((f"fig14_3d_{case}_W{wt}_hottest_slab_z", None, p["z"][k], 0.5))
+                rows.append((f"fig15_3d_{case}_W{wt}_densest_slab_z", None, p["z"][j], 0.5))
+    return rows
+
+
+def lid_rows(sweeps):
+    """The open top is a wall 100 d up: hits on it per unit time over hits on the base, at
+    W = 85.01 (near the end of the paper's sweep) and the largest W of each case (0 = never
+    reached)."""
+    rows = []
+    for dim, study in sweeps.items():
+        if study is None:
+            continue
+        for case, run in ((c, r) for c in ("smooth", "rough")
+                          for r in (study.at(f"sweep{dim.lower()}_{c}", 85.01),
+                                    study.runs(f"sweep{dim.lower()}_{c}")[-1])):
+            up = study.get(run, "observables.wall_pressure.upper.collision_frequency")
+            low = study.get(run, "observables.wall_pressure.lower.collision_frequency")
+            value = ratio(*up, *low) if up[0] > 0 else (0.0, None)
+            rows.append((f"top_wall_hits_over_base_hits_{dim.lower()}_{case}_W{study.w(run):.3g}",
+                         None, *value))
+    return rows
+
+
+def all_rows(directory):
+    sweeps = {"2D": load(directory, "sweep-2d"), "3D": load(directory, "sweep-3d")}
+    rows = table3_rows(sweeps)
+    if sweeps["3D"] is not None:
+        rows += acceptance_rows(sweeps["3D"], "3D", ["sweep3d_rough"], "accept_3d")
+    if sweeps["2D"] is not None:
+        rows += acceptance_rows(sweeps["2D"], "2D", ["sweep2d_rough"], "accept_2d")
+    sens = load(directory, "sensitivity-3d")
+    if sens is not None:
+        rows += acceptance_rows(sens, "3D", sens.points(), "accept_3d")
+    rows += fig2_rows(sweeps)
+    rows += table1_rows(sweeps)
+    rows += table2_fig7_rows(directory, sweeps)
+    rows += fig6_rows(directory)
+    rows += fig9_10_rows(parameter_curves(directory, sweeps))
+    rows += fig11_rows(fig11_data(directory))
+    rows += engines_rows(directory)
+    rows += profile_rows(directory, sweeps)
+    rows += lid_rows(sweeps)
+    return rows
+
+
+def _cell(x, fmt):
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return ""
+    return fmt.format(x) if isinstance(x, (int, float, np.floating, np.integer)) else str(x)
+
+
+def write_csv(rows, path):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(("quantity", "paper", "measured", "error"))
+        for q, paper, measured, error in rows:
+            w.writerow((q, _cell(paper, "{:g}"), _cell(measured, "{:.6g}"), _cell(error, "{:.3g}")))
+
+
+def main():
+    directory = Path(sys.argv[1] if len(sys.argv) > 1 else "results/bhateja-2016")
+    rows = all_rows(directory)
+    write_csv(rows, directory / "comparison.csv")
+    print(f"{directory / 'comparison.csv'}: {len(rows)} rows")
+
+
+if __name__ == "__main__":
+    main()
