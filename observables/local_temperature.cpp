@@ -18,7 +18,11 @@
 //   volume average    T_a^vol = mean of T_a(z) over the slabs of the bed, the paper's
 //                     T = int T(r) dV / V (Eq. 1); the bed is the slabs holding at least
 //                     `min_occupancy` grains on average (the paper does not say where its V ends);
-//   both scaled by m V_p^2 (T_*_scaled), and W.
+//   plain average     T_a^plain = sum m (v_a - V_a)^2 / (2 count), V the instantaneous
+//                     centre-of-mass velocity of all grains: the fluctuation about "the mean
+//                     velocity" without any local resolution (it keeps the collective motion of
+//                     the layers relative to each other);
+//   all scaled by m V_p^2 (T_*_scaled), and W.
 // Error bars: jackknife over `blocks` consecutive blocks of the measurement (the local means are
 // recomputed without each block).
 #include <fmt/format.h>
@@ -73,6 +77,7 @@ class LocalTemperature final : public Observable<D> {
         g_ = std::abs(info.gravity[std::size_t(axis_)]);
         stride_ = 3 + 2 * D;  // count, volume, mass, sum m v_a (D), sum m v_a^2 (D)
         sums_.assign(nblocks_ * slabs_ * phases_ * stride_, 0.0);
+        plain_.assign(nblocks_ * (D + 1), 0.0);
         samples_in_block_.assign(nblocks_, 0);
     }
 
@@ -90,6 +95,13 @@ class LocalTemperature final : public Observable<D> {
             phase = std::min(phases_ - 1, static_cast<std::size_t>(f * double(phases_)));
         }
         const double vd = D == 2 ? std::numbers::pi / 4 : std::numbers::pi / 6;
+        const Vec<D> vcm = centre_of_mass_velocity<D>(p, table_);
+        double* q = &plain_[block * (D + 1)];
+        q[D] += double(p.size());
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            const double m = table_.species[p.species[i]].mass;
+            for (int a = 0; a < D; ++a) q[a] += m * (p.v[i][a] - vcm[a]) * (p.v[i][a] - vcm[a]);
+        }
         for (std::size_t i = 0; i < p.size(); ++i) {
             double z = p.r[i][axis_];
             if (!bounded_) z -= length_ * std::floor(z / length_);
@@ -176,12 +188,16 @@ class LocalTemperature final : public Observable<D> {
             g.attr_on("T_" + c + "_profile", "unit", "energy");
             const Estimate tp = jack([&](const Totals& t) { return t.particle_average(a); });
             const Estimate tv = jack([&](const Totals& t) { return t.volume_average(bed, a); });
+            const Estimate tb = jack([&](const Totals& t) { return t.plain(a); });
             write_estimate(g, "T_" + c, tp, "energy", s);
+            write_estimate(g, "T_" + c + "_plain", tb, "energy", s);
             write_estimate(g, "T_" + c + "_volume", tv, "energy", s);
             if (scale > 0) {
                 write_estimate(g, "T_" + c + "_scaled", {tp.value / scale, tp.error / scale}, "",
                                s);
                 write_estimate(g, "T_" + c + "_volume_scaled", {tv.value / scale, tv.error / scale},
+                               "", s);
+                write_estimate(g, "T_" + c + "_plain_scaled", {tb.value / scale, tb.error / scale},
                                "", s);
             }
         }
@@ -215,6 +231,10 @@ class LocalTemperature final : public Observable<D> {
     // Sums over a set of blocks, reduced over drive phases where the local mean allows it.
     struct Totals {
         std::size_t samples = 0;
+        std::array<double, D + 1> plain_sums{};  // sum m (v_a - V_a)^2, count
+        double plain(int a) const {
+            return plain_sums[D] > 0 ? 0.5 * plain_sums[std::size_t(a)] / plain_sums[D] : kNaN;
+        }
         std::vector<double> count, volume;
         std::vector<std::array<double, D>> sum_mc2;  // per slab: sum m c_a^2 about u(z, phase)
         double local(std::size_t j, int a) const {
@@ -249,7 +269,9 @@ class LocalTemperature final : public Observable<D> {
         t.sum_mc2.assign(slabs_, std::array<double, D>{});
         std::vector<double> cell(stride_);
         for (std::size_t b = 0; b < nblocks_; ++b) {
-            if (b != skip) t.samples += samples_in_block_[b];
+            if (b == skip) continue;
+            t.samples += samples_in_block_[b];
+            for (int k = 0; k <= D; ++k) t.plain_sums[std::size_t(k)] += plain_[b * (D + 1) + std::size_t(k)];
         }
         for (std::size_t j = 0; j < slabs_; ++j) {
             for (std::size_t ph = 0; ph < phases_; ++ph) {
@@ -294,6 +316,7 @@ class LocalTemperature final : public Observable<D> {
     std::size_t slabs_ = 1, stride_ = 1, samples_ = 0;
     double mass_ = 1, diameter_ = 1, g_ = 0;
     std::vector<double> sums_;
+    std::vector<double> plain_;  // per block: sum m (v_a - V_a)^2 (D), count
     std::vector<std::size_t> samples_in_block_;
 };
 
