@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Bhateja, Sharma & Singh, Phys. Fluids 28, 043301 (2016): the measured numbers against the paper's.
+"""Bhateja, Sharma & Singh, Phys. Fluids 28, 043301 (2016): measured numbers against the paper's.
 
 Usage: /usr/bin/python3 studies/bhateja-2016/analysis.py [RESULTS_DIR]
 
@@ -32,7 +32,13 @@ from fitting import MODELS, fit_model, loglog_slope  # noqa: E402
 HERE = Path(__file__).resolve().parent
 PAPER = yaml.safe_load((HERE / "paper.yaml").read_text())
 LT = "observables.local_temperature."
-DEFINITIONS = {"volume": "_volume_scaled", "particle": "_scaled"}
+# Temperature definitions: suffix of the scaled quantity, of the unscaled one.
+#   volume: mean of the slab temperatures over the bed (Eq. (1)), about the slab-and-phase mean;
+#   particle: each grain once, about the same local mean;
+#   plain: each grain once, about the instantaneous centre-of-mass velocity of all grains (the
+#   layers' collective motion counts as temperature; runs made before gran had it lack it).
+DEFINITIONS = {"volume": ("_volume_scaled", "_volume"), "particle": ("_scaled", ""),
+               "plain": ("_plain_scaled", "_plain")}
 W_PAPER_END = PAPER["inferred"]["W_sweep_range"][1]  # 89.43: 4000 rpm, the end of the paper's sweep
 W_ACCEPT = (10, 20, 50, 100)  # acceptance check of the brief
 W2_TOLERANCE = 0.10  # W_2: smallest W beyond which Tbar stays within 10% of its value at max W
@@ -61,6 +67,12 @@ class Study:
         """The point of a run: its name up to the first swept key."""
         return re.split(r"_(?:frequency|sample_interval|measurement)[-0-9.e+]", row["run"])[0]
 
+    def definitions(self):
+        """The temperature definitions this study's runs report (vertical component)."""
+        row = self.rows[0]
+        return [d for d, (suffix, _) in DEFINITIONS.items()
+                if row.get(LT + self.vertical(row) + suffix) not in (None, "")]
+
     def points(self):
         return sorted({self.point(r) for r in self.rows})
 
@@ -77,12 +89,12 @@ class Study:
         """Scaled temperature T_a / (m V_p^2) of a run: (value, error). component None: vertical;
         'T_x' horizontal; 'T' the mean over the d_f components."""
         c = component or self.vertical(row)
-        return self.get(row, LT + c + DEFINITIONS[definition])
+        return self.get(row, LT + c + DEFINITIONS[definition][0])
 
     def temperature(self, row, definition="volume", component=None):
         """Unscaled T_a in units m g d: (value, error)."""
         c = component or self.vertical(row)
-        return self.get(row, LT + c + ("_volume" if definition == "volume" else ""))
+        return self.get(row, LT + c + DEFINITIONS[definition][1])
 
     @staticmethod
     def w(row):
@@ -115,13 +127,20 @@ class Study:
 
     def profile(self, row):
         """Local profiles of a run: dict z, T (vertical), T_error, phi, phi_error, grains, bed
-        (number of slabs of the volume average, counted from the bottom), W, Vp."""
+        (mask of the slabs of the volume average: >= min_occupancy grains on average, which
+        can leave out the slab below the base's mean position), W, Vp."""
         with self.h5(row) as f:
             g = f["observables/local_temperature"]
             c = "T_z" if "T_z_profile" in g else "T_y"
-            return {"z": g["z"][:], "T": g[c + "_profile"][:], "T_error": g[c + "_profile_error"][:],
-                    "phi": g["phi"][:], "phi_error": g["phi_error"][:],
-                    "grains": g["grains_per_slab"][:], "bed": int(g["bed_slabs"][()]),
+            scene = yaml.safe_load(f["parameters/scene"][()])
+            obs = next(o for o in scene["observables"] if o["type"] == "local_temperature")
+            grains = g["grains_per_slab"][:]
+            bed = grains >= obs.get("min_occupancy", 0.1)
+            if bed.sum() != int(g["bed_slabs"][()]):
+                raise ValueError(f"{row['run']}: bed slabs do not match min_occupancy")
+            return {"z": g["z"][:], "T": g[c + "_profile"][:],
+                    "T_error": g[c + "_profile_error"][:], "phi": g["phi"][:],
+                    "phi_error": g["phi_error"][:], "grains": grains, "bed": bed,
                     "W": float(g["W"][()]), "Vp": float(g["peak_velocity"][()])}
 
 
@@ -183,7 +202,7 @@ def table3_rows(sweeps):
         if study is None:
             continue
         point = f"sweep{dim.lower()}_rough"
-        for definition in DEFINITIONS:
+        for definition in study.definitions():
             w, y, e = study.curve(point, definition)
             wf, _ = peak(w, y)
             for rng, hi in (("paper_range", W_PAPER_END), ("full_range", np.inf)):
@@ -194,7 +213,8 @@ def table3_rows(sweeps):
                     tag = f"table3_{dim.lower()}_rough_{form}_{definition}_{rng}"
                     for k, par in enumerate("abc"):
                         rows.append((f"{tag}_{par}", ref[par], fit["p"][k], fit["err"][k]))
-                    rows.append((f"{tag}_R", ref["correlation"], math.sqrt(max(fit["r2"], 0)), None))
+                    rows.append((f"{tag}_R", ref["correlation"], math.sqrt(max(fit["r2"], 0)),
+                                 None))
                     rows.append((f"{tag}_R2", None, fit["r2"], None))
                     rows.append((f"{tag}_chi2_reduced", None, fit["chi2_reduced"], None))
                     rows.append((f"{tag}_W_from", None, w[m][0], None))
@@ -215,7 +235,7 @@ def acceptance_rows(study, dim, points, prefix):
     deviation (measured - paper) / paper; both definitions."""
     rows = []
     for point in points:
-        for definition in DEFINITIONS:
+        for definition in study.definitions():
             for wt in W_ACCEPT:
                 try:
                     run = study.at(point, wt)
@@ -239,20 +259,21 @@ def fig2_rows(sweeps):
             continue
         for case in ("smooth", "rough"):
             point = f"sweep{dim.lower()}_{case}"
-            for definition in DEFINITIONS:
+            for definition in study.definitions():
                 w, y, e = study.curve(point, definition)
                 wf, k = peak(w, y)
                 tag = f"fig2_{dim.lower()}_{case}_{definition}"
                 rows.append((f"{tag}_W_f", None, wf, None))
                 rows.append((f"{tag}_peak", None, y[k], e[k]))
                 j = int(np.argmin(np.abs(w - 85.01)))
-                rows.append((f"{tag}_T_W{w[j]:.4g}_over_peak", None, *ratio(y[j], e[j], y[k], e[k])))
+                rows.append((f"{tag}_T_W{w[j]:.4g}_over_peak", None,
+                             *ratio(y[j], e[j], y[k], e[k])))
                 j0 = int(np.argmin(np.abs(w - 0.894)))
                 rows.append((f"{tag}_T_W{w[j0]:.3g}_unfluidized", 0, y[j0], e[j0]))
             w, y, _ = study.curve(point, "volume")
             prof = study.profile(study.runs(point)[peak(w, y)[1]])
-            bed = slice(0, prof["bed"])
-            k = int(np.argmax(prof["phi"][bed]))
+            bed = prof["bed"]
+            k = int(np.argmax(np.where(bed, prof["phi"], -1)))
             rows.append((f"fig2_{dim.lower()}_{case}_max_phi_profile_at_W_f", 0.2, prof["phi"][k],
                          prof["phi_error"][k]))
             rows.append((f"fig2_{dim.lower()}_{case}_bed_mean_phi_at_W_f", 0.2,
@@ -262,17 +283,19 @@ def fig2_rows(sweeps):
 
 def table1_rows(sweeps):
     """Table I: alpha of T_z ~ V_p^alpha over the experiments' W ranges (rough systems). Warr's
-    range 0.5-9 starts below lift-off (W < 1: no fluidisation, T_z ~ 0), so the fit uses W > 1.
+    range 0.5-9 starts below lift-off (W < 1: no fluidisation, T_z ~ 0), so the fit uses W > 1;
+    `warr_from_W2` (W 2-9) shows how much the barely fluidised W = 1.4 point weighs.
     The 3D ranges are drawn only on Fig. 2: measured left empty."""
     rows = []
     ref = {r["ref"].split(" (")[0]: r["alpha_paper"] for r in PAPER["table1"]["rows"]}
     s2 = sweeps.get("2D")
     if s2 is not None:
-        for definition in DEFINITIONS:
+        for definition in s2.definitions():
             w, t, _ = s2.curve("sweep2d_rough", definition, scaled=False)
             vp = np.sqrt(w)  # V_p / sqrt(g d) = sqrt(W)
             for name, lo, hi, paper in (("warr", LIFT_OFF, 9, ref["Warr et al."]),
                                         ("feitosa_menon", 44, 135, ref["Feitosa and Menon"]),
+                                        ("warr_from_W2", 2, 9, None),
                                         ("feitosa_menon_to_W89", 44, W_PAPER_END, None)):
                 a, e, n = alpha_over(w, vp, t, lo, hi)
                 rows.append((f"table1_alpha_{name}_2d_rough_{definition}", paper, a, e))
@@ -308,13 +331,15 @@ def table2_fig7_rows(directory, sweeps):
         dh, dh_err = h[:, 0] - rest[0], np.hypot(h[:, 1], rest[1])
         if dim == "2D":
             a, e, _ = alpha_over(w, np.sqrt(w), dh, LIFT_OFF, 9)
-            rows.append(("table2_alpha_h_warr_2d_rough", PAPER["table2"]["rows"][0]["alpha_h_paper"],
-                         a, e))
+            rows.append(("table2_alpha_h_warr_2d_rough",
+                         PAPER["table2"]["rows"][0]["alpha_h_paper"], a, e))
+            a, e, _ = alpha_over(w, np.sqrt(w), dh, 2, 9)
+            rows.append(("table2_alpha_h_warr_from_W2_2d_rough", None, a, e))
         for wt in (2.01, 5.58, 22.35, 50.3, 85.01, 135):
             k = int(np.argmin(np.abs(w - wt)))
             if abs(w[k] / wt - 1) > 0.01:
                 continue
-            for definition in DEFINITIONS:
+            for definition in study.definitions():
                 t, te = study.temperature(runs[k], definition)
                 rows.append((f"fig7_{dim.lower()}_rough_{definition}_Tz_over_mg_dh_W{wt}", None,
                              *ratio(t, te, dh[k], dh_err[k])))
@@ -326,20 +351,40 @@ def table2_fig7_rows(directory, sweeps):
     return rows
 
 
+def lid_curve(study, point, definition):
+    """lid-g0.yaml, one point: V_p, T_z (value, error) rows, sorted by V_p."""
+    runs = sorted(study.runs(point), key=study.vp)
+    return (np.array([study.vp(r) for r in runs]),
+            np.array([study.temperature(r, definition) for r in runs]), runs)
+
+
+def lid_alpha(study, point, definition):
+    """alpha of T_z ~ V_p^alpha at g = 0 (OLS in log-log, as gran's study fits), its error and the
+    log prefactor."""
+    vp, t, _ = lid_curve(study, point, definition)
+    a, e = loglog_slope(vp, t[:, 0])
+    return a, e, float(np.mean(np.log(t[:, 0]) - a * np.log(vp)))
+
+
 def fig6_rows(directory):
-    """Fig. 6: alpha of T_z ~ V_p^alpha with g = 0 under a lid (lid-g0.fits.csv), paper 2."""
+    """Fig. 6: alpha of T_z ~ V_p^alpha with g = 0 under a lid, paper 2: gran's study fits
+    (lid-g0.fits.csv: volume and particle averages), and the same OLS here for every definition
+    (`_check` rows; the plain average has no study fit)."""
+    study = load(directory, "lid-g0")
     path = Path(directory) / "lid-g0.fits.csv"
-    if not path.exists():
-        print(f"skipped: {path} is missing")
-        return []
-    with open(path, newline="") as f:
-        fits = list(csv.DictReader(f))
     rows = []
-    for r in fits:
-        definition = "particle" if r["fit"].startswith("lid_alpha_particle") else "volume"
-        point = r["group"] or r["fit"]
-        rows.append((f"fig6_alpha_{point}_{definition}", PAPER["fig6"]["result_alpha"],
-                     _float(r["theta"]), _float(r["theta_error"])))
+    paper = PAPER["fig6"]["result_alpha"]
+    if path.exists():
+        with open(path, newline="") as f:
+            for r in csv.DictReader(f):
+                definition = "particle" if r["fit"].startswith("lid_alpha_particle") else "volume"
+                rows.append((f"fig6_alpha_{r['group'] or r['fit']}_{definition}", paper,
+                             _float(r["theta"]), _float(r["theta_error"])))
+    if study is not None:
+        for point in study.points():
+            for d in study.definitions():
+                a, e, _ = lid_alpha(study, point, d)
+                rows.append((f"fig6_alpha_{point}_{d}_check", paper, a, e))
     return rows
 
 
@@ -413,11 +458,11 @@ def fig11_data(directory):
     study = load(directory, "amplitude-2d")
     if study is None:
         return None
-    out = {d: {} for d in DEFINITIONS}
+    out = {d: {} for d in study.definitions()}
     for r in study.rows:
         m = re.search(r"_A([0-9.]+)_W([0-9.]+)$", study.point(r))
         amp, wv = float(m.group(1)), float(m.group(2))
-        for d in DEFINITIONS:
+        for d in study.definitions():
             out[d][(amp, wv)] = study.temperature(r, d)
     return out
 
@@ -463,9 +508,10 @@ def engines_rows(directory):
                 run = study.at(point, wv)
             except KeyError:
                 continue
-            for d in DEFINITIONS:
-                rows.append((f"engines_{point.removeprefix('engines_')}_over_event_driven_{d}_W{wv:.3g}",
-                             None, *ratio(*study.tbar(run, d), *study.tbar(ref, d))))
+            for d in study.definitions():
+                name = point.removeprefix("engines_")
+                rows.append((f"engines_{name}_over_event_driven_{d}_W{wv:.3g}", None,
+                             *ratio(*study.tbar(run, d), *study.tbar(ref, d))))
     return rows
 
 
@@ -481,7 +527,7 @@ def profile_rows(directory, sweeps):
             except KeyError:
                 continue
             p = study.profile(run)
-            k = int(np.argmax(p["T"][:p["bed"]]))
+            k = int(np.argmax(np.where(p["bed"], p["T"], -1)))
             rows.append((f"fig12_W22.35_{point}_hottest_slab_z", "7-10" if point.endswith("N4")
                          else None, p["z"][k], 0.5))
     s3 = sweeps.get("3D")
@@ -489,9 +535,8 @@ def profile_rows(directory, sweeps):
         for case in ("smooth", "rough"):
             for wt in (5.58, 22.35, 50.3, 85.01):
                 p = s3.profile(s3.at(f"sweep3d_{case}", wt))
-                bed = slice(0, p["bed"])
-                k = int(np.argmax(p["T"][bed]))
-                j = int(np.argmax(p["phi"][bed]))
+                k = int(np.argmax(np.where(p["bed"], p["T"], -1)))
+                j = int(np.argmax(np.where(p["bed"], p["phi"], -1)))
                 rows.append((f"fig14_3d_{case}_W{wt}_hottest_slab_z", None, p["z"][k], 0.5))
                 rows.append((f"fig15_3d_{case}_W{wt}_densest_slab_z", None, p["z"][j], 0.5))
     return rows

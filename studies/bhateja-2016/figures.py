@@ -9,7 +9,6 @@ figure whose study has no results yet is skipped with a note. Filled symbols: vo
 jackknife block errors). Every plotted number comes from the result files; the only curves not
 measured are the paper's Table III algebraic fits (dotted, labelled "paper").
 """
-import csv
 import sys
 from pathlib import Path
 
@@ -23,27 +22,32 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(1, str(HERE.parent))
 from figure_style import label, save  # noqa: E402
-from analysis import (DEFINITIONS, LIFT_OFF, W_PAPER_END, fig11_data, load,  # noqa: E402
-                      parameter_alphas, parameter_curves, paper_algebraic, peak, rest_height)
+from analysis import (LIFT_OFF, W_PAPER_END, fig11_data, lid_alpha, lid_curve,  # noqa: E402
+                      load, parameter_alphas, parameter_curves, paper_algebraic, peak, rest_height)
 from fitting import MODELS, fit_model  # noqa: E402
 
 CASES = (("smooth", "C0"), ("rough", "C3"))
-FILL = {"volume": None, "particle": "none"}  # marker face: filled (volume) or open (particle)
+# marker, face (None: filled) and line per temperature definition
+STYLE = {"volume": ("o", None, "-"), "particle": ("o", "none", ":"), "plain": ("s", "none", "--")}
 WPROF = (5.58, 22.35, 50.3, 85.01)
 
 
-def ebar(ax, x, y, e, color, definition, lbl, marker="o", ls="-"):
-    ax.errorbar(x, y, yerr=e, fmt=marker + ls, color=color, mfc=FILL[definition], ms=4, lw=0.9,
-                capsize=2, label=lbl)
+def ebar(ax, x, y, e, color, definition, lbl, ls=None):
+    """Error bars in the style of a temperature definition (ls "" for points only)."""
+    marker, face, line = STYLE[definition]
+    if np.all(np.isnan(np.asarray(y, float))):
+        return
+    ax.errorbar(x, y, yerr=e, fmt=marker + (line if ls is None else ls), color=color, mfc=face,
+                ms=4, lw=0.9, capsize=2, label=lbl)
 
 
 def fig2(sweeps, out):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.3))
     for ax, (dim, s) in zip(axes, sweeps.items()):
         for case, color in CASES:
-            for d in DEFINITIONS:
+            for d in s.definitions():
                 w, y, e = s.curve(f"sweep{dim.lower()}_{case}", d)
-                ebar(ax, w, y, e, color, d, f"{case}, {d}", ls="-" if d == "volume" else ":")
+                ebar(ax, w, y, e, color, d, f"{case}, {d}")
         wc = np.geomspace(1, 135, 200)
         ax.plot(wc, paper_algebraic(dim, wc), "k--", lw=1, label="paper Table III, rough")
         ax.axvspan(W_PAPER_END, 135, color="0.9", zorder=0)
@@ -58,9 +62,9 @@ def fig4(sweeps, out):
         for row, (comp, name) in enumerate((("T_x", "T_x"), ("T", "T = sum T_a / d_f"))):
             ax = axes[row, col]
             for case, color in CASES:
-                for d in DEFINITIONS:
+                for d in s.definitions():
                     w, y, e = s.curve(f"sweep{dim.lower()}_{case}", d, component=comp)
-                    ebar(ax, w, y, e, color, d, f"{case}, {d}", ls="-" if d == "volume" else ":")
+                    ebar(ax, w, y, e, color, d, f"{case}, {d}")
                 w, y, _ = s.curve(f"sweep{dim.lower()}_{case}", "volume")
                 ax.plot(w, y, color=color, lw=0.6, alpha=0.5, label=f"{case}: T_z (volume)")
             ax.set_xscale("log")
@@ -70,28 +74,20 @@ def fig4(sweeps, out):
 
 def fig6(directory, out):
     study = load(directory, "lid-g0")
-    path = Path(directory) / "lid-g0.fits.csv"
-    if study is None or not path.exists():
+    if study is None:
         return
-    with open(path, newline="") as f:
-        fits = {r["fit"]: r for r in csv.DictReader(f)}
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.3))
-    for ax, d, prefix in zip(axes, DEFINITIONS, ("lid_alpha_lid", "lid_alpha_particle_lid")):
+    defs = study.definitions()
+    fig, axes = plt.subplots(1, len(defs), figsize=(5.5 * len(defs), 4.3), squeeze=False)
+    for ax, d in zip(axes[0], defs):
         for k, point in enumerate(study.points()):
-            runs = study.runs(point)
-            vp = np.array([study.vp(r) for r in runs])
-            te = np.array([study.temperature(r, d) for r in runs])
-            fit = next((r for name, r in fits.items()
-                        if name.startswith(prefix) and name.endswith(point.removeprefix("lid"))), None)
-            lbl = point
-            if fit is not None and fit["theta"] not in ("", "nan"):
-                th, lp = float(fit["theta"]), float(fit["log_prefactor"])
-                ax.plot(vp, np.exp(lp) * vp**th, color=f"C{k}", lw=0.7)
-                lbl += f": alpha = {th:.3f}"
-            ebar(ax, vp, te[:, 0], te[:, 1], f"C{k}", d, lbl, ls="")
+            vp, t, _ = lid_curve(study, point, d)
+            a, ae, lp = lid_alpha(study, point, d)
+            ax.plot(vp, np.exp(lp) * vp**a, color=f"C{k}", lw=0.7)
+            ebar(ax, vp, t[:, 0], t[:, 1], f"C{k}", d, f"{point}: alpha = {a:.3f}({ae * 1000:.0f})",
+                 ls="")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        label(ax, "V_p [(g d)^1/2 units of the scene]", "T_z [m g d units]", f"{d} average")
+        label(ax, "V_p [scene units]", "T_z [scene units]", f"{d} average", fontsize=7)
     save(fig, out, "fig6", "Fig. 6: g = 0, lid 10 d above the base: T_z ~ V_p^alpha (paper: 2)")
 
 
@@ -106,20 +102,22 @@ def fig7(directory, sweeps, out):
         w = np.array([s.w(r) for r in runs])
         h = np.array([s.get(r, "observables.barycentric_height.h_cm") for r in runs])
         dh, dhe = h[:, 0] - rest[0], np.hypot(h[:, 1], rest[1])
-        for d in DEFINITIONS:
+        for d in s.definitions():
             t = np.array([s.temperature(r, d) for r in runs])
             v = t[:, 0] / dh
             e = np.abs(v) * np.hypot(t[:, 1] / t[:, 0], dhe / dh)
-            ebar(ax, w, v, e, color, d, f"{dim} rough, {d}", ls="-" if d == "volume" else ":")
+            ebar(ax, w, v, e, color, d, f"{dim} rough, {d}")
     ax.set_xscale("log")
-    label(ax, "W", "(T_z/m V_p^2) / (Delta h_cm g / V_p^2) = T_z/(m g Delta h_cm)",
-          "Delta h_cm = h_cm - h_cm(rest)")
+    ax.set_yscale("log")
+    label(ax, "W", "Tbar_z / Delta hbar_cm = T_z/(m g Delta h_cm)",
+          "Delta h_cm = h_cm - h_cm(rest), Delta hbar_cm = Delta h_cm g / V_p^2")
     save(fig, out, "fig7", "Fig. 7: T_z over the barycentric rise")
 
 
 def fig8(sweeps, out):
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8))
-    for row, d in enumerate(DEFINITIONS):
+    defs = sweeps["3D"].definitions()
+    fig, axes = plt.subplots(len(defs), 2, figsize=(11, 4 * len(defs)), squeeze=False)
+    for row, d in enumerate(defs):
         for (dim, s), color in zip(sweeps.items(), ("C2", "C3")):
             w, y, e = s.curve(f"sweep{dim.lower()}_rough", d)
             wf = peak(w, y)[0]
@@ -145,7 +143,8 @@ PARAM_PANELS = (("(a) k_n", ("par2d_kn2e4", "par2d_canonical", "par2d_kn2e6"),
                  ("k_n = 2e4", "k_n = 2e5", "k_n = 2e6")),
                 ("(b) e_p = e_w", ("par2d_e0.7", "par2d_e0.8", "par2d_canonical", "par2d_e0.95"),
                  ("0.7", "0.8", "0.9", "0.95")),
-                ("(c) mu_p", ("par2d_mu0.1", "par2d_canonical", "par2d_mu0.8"), ("0.1", "0.4", "0.8")),
+                ("(c) mu_p", ("par2d_mu0.1", "par2d_canonical", "par2d_mu0.8"),
+                 ("0.1", "0.4", "0.8")),
                 ("(d) N", ("par2d_N2", "par2d_N3", "par2d_canonical", "par2d_N6", "par2d_N8"),
                  ("2", "3", "4", "6", "8")))
 
@@ -182,14 +181,12 @@ def fig11(directory, out):
     if data is None:
         return
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.3))
-    for d in DEFINITIONS:
-        t = data[d]
+    for d, t in data.items():
         ws = sorted({w for _, w in t})
         for k, w in enumerate(ws):
             a = sorted(x for x, ww in t if ww == w)
             v = np.array([t[(x, w)] for x in a])
-            ebar(axes[0], a, v[:, 0], v[:, 1], f"C{k}", d, f"W = {w}, {d}",
-                 ls="--" if d == "volume" else ":")
+            ebar(axes[0], a, v[:, 0], v[:, 1], f"C{k}", d, f"W = {w}, {d}")
         v = np.array([t[(1.0, w)] for w in ws])
         ebar(axes[1], ws, v[:, 0], v[:, 1], "k", d, f"A/d = 1, {d}")
     label(axes[0], "A/d", "T_z/(m g d)", "W fixed, A/d varied")
@@ -198,7 +195,7 @@ def fig11(directory, out):
 
 
 def profile_panel(ax, p, color, lbl, key="T", scale=1.0):
-    bed = slice(0, p["bed"])
+    bed = p["bed"]
     ax.errorbar(p["z"][bed], p[key][bed] / scale, yerr=p[key + "_error"][bed] / scale, fmt="o-",
                 ms=3, lw=0.9, capsize=1.5, color=color, label=lbl)
 
@@ -248,7 +245,7 @@ def fig16(sweeps, out):
                 v = []
                 for p in profs:
                     j = int(np.argmin(np.abs(p["z"] - z)))
-                    ok = j < p["bed"]
+                    ok = p["bed"][j]
                     v.append((p["T"][j] / p["Vp"] ** 2, p["T_error"][j] / p["Vp"] ** 2) if ok
                              else (np.nan, np.nan))
                 v = np.array(v)
@@ -268,7 +265,7 @@ def phi_profiles(sweeps, out):
             wf = peak(w, y)[0]
             for wv, ls in ((wf, "-"), (22.35, "--"), (85.01, ":")):
                 p = s.profile(s.at(f"sweep{dim.lower()}_{case}", wv))
-                bed = slice(0, p["bed"])
+                bed = p["bed"]
                 ax.errorbar(p["z"][bed], p["phi"][bed], yerr=p["phi_error"][bed], fmt=ls,
                             color=color, lw=1, label=f"{case}, W = {wv:.4g}" +
                             (" (W_f)" if wv == wf else ""))
@@ -284,7 +281,7 @@ def engines(directory, out):
     fig, ax = plt.subplots(figsize=(6, 4.3))
     for k, ref in enumerate(study.runs("engines_event_driven")):
         wv = study.w(ref)
-        for d in DEFINITIONS:
+        for d in study.definitions():
             kn, v = [], []
             for point in study.points():
                 if point.startswith("engines_dem_kn"):
@@ -306,6 +303,8 @@ def main():
     directory = Path(sys.argv[1] if len(sys.argv) > 1 else "results/bhateja-2016")
     out = directory / "figures"
     out.mkdir(parents=True, exist_ok=True)
+    for old in out.glob("*.png"):  # rewritten from scratch: no figure of an earlier result stays
+        old.unlink()
     sweeps = {"2D": load(directory, "sweep-2d"), "3D": load(directory, "sweep-3d")}
     if all(s is not None for s in sweeps.values()):
         fig2(sweeps, out)
