@@ -20,8 +20,9 @@ WallMotion motion_for(const Params& p, int side) {
         if (p.has("velocity")) return WallMotion::sawtooth(p.real("velocity"));
         if (p.has("amplitude") && p.has("frequency"))
             return WallMotion::sawtooth(2 * p.real("amplitude") * p.real("frequency"));
-        p.fail("waveform", "waveform 'sawtooth' needs `velocity` (v0) or `amplitude` and "
-                           "`frequency` (v0 = 2 A f)");
+        p.fail("waveform",
+               "waveform 'sawtooth' needs `velocity` (v0) or `amplitude` and "
+               "`frequency` (v0 = 2 A f)");
     }
     if (!p.has("amplitude") || !p.has("frequency")) {
         p.fail("waveform", "waveform '" + wave + "' needs `amplitude` and `frequency`");
@@ -110,7 +111,8 @@ const bool registered = register_plugin<Driver, VibratingWall>(
                     "waveform", "two_parabolas", {"two_parabolas", "sinusoid", "sawtooth"},
                     "wall motion: two_parabolas z = +-(A/2)((t-t_n)^2/t0^2 - 1), t0 = 1/(4f), peak "
                     "velocity 4 A f; sinusoid z = A sin(2 pi f t + phi), peak velocity 2 pi f A; "
-                    "sawtooth: fixed position, every particle meets it at speed v0 (event_driven; on the "
+                    "sawtooth: fixed position, every particle meets it at speed v0 (event_driven; "
+                    "on the "
                     "dem engine a real sawtooth z = A (2 frac(f t) - 1), v0 = 2 A f)"),
                 optional(
                     real("amplitude", "", "length",

@@ -98,7 +98,8 @@ struct WallMotion {
                 return is_static() ? 0 : piston_parabola(t).z;
             case Kind::sawtooth_ramp: {
                 if (is_static()) return 0;
-                const double x = omega * t / (2 * std::numbers::pi) + phase / (2 * std::numbers::pi);
+                const double x =
+                    omega * t / (2 * std::numbers::pi) + phase / (2 * std::numbers::pi);
                 return (v0 >= 0 ? 1.0 : -1.0) * amplitude * (2 * (x - std::floor(x)) - 1);
             }
             default:

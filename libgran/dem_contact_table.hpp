@@ -43,7 +43,8 @@ struct DemContactSpec {
     // equal uniform spheres (tangential and normal oscillations of equal period).
     double k_t_ratio = 2.0 / 7.0;
     // >= 0: gamma_t = gamma_t_ratio x gamma_n of the same contact (replaces gamma_t); the paper
-    // gives no c_t, and c_t = c_n is a natural reading of "a tangential dashpot" like the normal one.
+    // gives no c_t, and c_t = c_n is a natural reading of "a tangential dashpot" like the normal
+    // one.
     double gamma_t_ratio = -1;
     double reference_speed = 0;  // hertz_mindlin: impact speed at which t_c is defined, > 0
 };

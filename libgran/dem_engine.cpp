@@ -477,8 +477,9 @@ void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion, double
         fail("set_wall: walls need a bounded (non-periodic) axis and side 0 or 1");
     }
     if (motion.kind == WallMotion::Kind::sawtooth) {
-        fail("set_wall: the sawtooth limit has no position; use a sawtooth_ramp, a sinusoid or a "
-             "parabolic piston");
+        fail(
+            "set_wall: the sawtooth limit has no position; use a sawtooth_ramp, a sinusoid or a "
+            "parabolic piston");
     }
     double dmax = 0;
     for (double r : radius_) dmax = std::max(dmax, 2 * r);

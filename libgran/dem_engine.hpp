@@ -20,11 +20,11 @@
 // Symplectic (hence bounded energy error) for conservative forces; gravity is integrated exactly.
 //
 // Walls: on bounded axes, a lower and an upper plane, each static or moving along its normal
-// with a WallMotion (fixed, sinusoid, parabolic_piston, sawtooth_ramp). Convention of the event-driven engine:
-// the lower surface is at reach + position(t), the upper at L - reach + position(t), so each
-// excursion stays inside [0, L]. A wall is a contact partner of infinite mass (m_eff = m_i) with
-// the species' wall parameters; the relative velocity uses the wall velocity along the normal
-// (tangential wall velocity 0) and no wall rotation (lever arm 0).
+// with a WallMotion (fixed, sinusoid, parabolic_piston, sawtooth_ramp). Convention of the
+// event-driven engine: the lower surface is at reach + position(t), the upper at L - reach +
+// position(t), so each excursion stays inside [0, L]. A wall is a contact partner of infinite mass
+// (m_eff = m_i) with the species' wall parameters; the relative velocity uses the wall velocity
+// along the normal (tangential wall velocity 0) and no wall rotation (lever arm 0).
 #include <array>
 #include <atomic>
 #include <cstdint>

@@ -253,8 +253,8 @@ void DemNeighbourList<D>::build(const Box<D>& box, const std::vector<Vec<D>>& r,
         for (std::size_t i = 0; i < n; ++i) {
             for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
                 if (!touching[k]) continue;
-                carried_.push_back({std::uint32_t(i), partner[k],
-                                    history_ ? spring[k] : Vec<D>(Vec<D>::Zero())});
+                carried_.push_back(
+                    {std::uint32_t(i), partner[k], history_ ? spring[k] : Vec<D>(Vec<D>::Zero())});
             }
         }
     }

@@ -61,8 +61,8 @@ class DemNeighbourList {
     bool history_ = false;
     std::size_t ns_ = 0;
     double widest_ = 0;
-    std::size_t cap_ = 0;             // most cells
-    std::vector<double> cutoff2_;     // ns x ns
+    std::size_t cap_ = 0;          // most cells
+    std::vector<double> cutoff2_;  // ns x ns
     std::array<bool, D> periodic_{};
     std::array<double, D> length_{};
     std::array<std::int32_t, D> ncell_{};

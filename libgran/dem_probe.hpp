@@ -12,7 +12,7 @@ namespace gran {
 
 struct DemProbeResult {
     double requested_restitution = 1;
-    double restitution = 1;        // -(normal relative velocity after) / (before)
+    double restitution = 1;           // -(normal relative velocity after) / (before)
     double closed_form_duration = 0;  // t_c of the resolved contact
     double duration = 0;              // measured: steps with overlap x dt
     double dt_over_tc = 0;            // dt / closed-form t_c

@@ -275,9 +275,10 @@ class DemRunner {
         for (std::size_t k = 0; k < observables.size(); ++k) {
             if (observables[k]->collision_sink()) {
                 sc.observables[k].params.fail(
-                    "type", "this observable (with these options) needs the binary collision "
-                            "records of the event_driven engine; the dem engine has contacts of "
-                            "finite duration");
+                    "type",
+                    "this observable (with these options) needs the binary collision "
+                    "records of the event_driven engine; the dem engine has contacts of "
+                    "finite duration");
             }
         }
     }
@@ -582,8 +583,7 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
 template <int D>
 RunReport run_dim(const Scene& sc, const RunOptions& opt) {
     auto [drivers, observables] = make_plugins<D>(sc);
-    if (sc.engine_type == "dem")
-        return run_with<D, DemRunner<D>>(sc, opt, drivers, observables);
+    if (sc.engine_type == "dem") return run_with<D, DemRunner<D>>(sc, opt, drivers, observables);
     return run_with<D, EventDrivenRunner<D>>(sc, opt, drivers, observables);
 }
 

@@ -110,8 +110,8 @@ Schema engine_schema() {
                  "dem: head-on contact duration t_c to give the stiffness when stiffness = 0 "
                  "(hertz_mindlin: at reference_speed)",
                  0, 1e308),
-            real("dt", "0", "time", "dem: time step; 0: dt_fraction x the shortest contact time",
-                 0, 1e308),
+            real("dt", "0", "time", "dem: time step; 0: dt_fraction x the shortest contact time", 0,
+                 1e308),
             real("dt_fraction", "0.02", "",
                  "dem: time step as a fraction of the shortest contact duration (when dt = 0); at "
                  "most 0.2",
@@ -127,8 +127,7 @@ Schema engine_schema() {
                           "(replaces tangential_damping; e.g. 1: c_t = c_n)",
                           0, 1e308)),
             optional(real("wall_friction", "", "",
-                          "dem: friction coefficient against walls (default: friction)", 0,
-                          1e308)),
+                          "dem: friction coefficient against walls (default: friction)", 0, 1e308)),
             optional(real("wall_tangential_damping", "", "mass/time",
                           "dem: tangential dashpot against walls (default: tangential_damping)", 0,
                           1e308)),
@@ -181,7 +180,8 @@ void read_dem_settings(const Params& ep, Scene& sc) {
     }
     d.pair.mu = ep.real("friction");
     d.pair.gamma_t = ep.real("tangential_damping");
-    if (ep.has("tangential_damping_ratio")) d.pair.gamma_t_ratio = ep.real("tangential_damping_ratio");
+    if (ep.has("tangential_damping_ratio"))
+        d.pair.gamma_t_ratio = ep.real("tangential_damping_ratio");
     d.pair.k_t_ratio = ep.real("tangential_stiffness_ratio");
     double m_min = kInf;
     for (const auto& sp : sc.species.species) m_min = std::min(m_min, sp.mass);
@@ -189,8 +189,9 @@ void read_dem_settings(const Params& ep, Scene& sc) {
                                                    : std::sqrt(sc.temperature / m_min);
     d.pair.reference_speed = d.probe_speed;
     if (d.law == DemLaw::hertz_mindlin && d.pair.t_c > 0 && ep.real("reference_speed") == 0) {
-        ep.fail("reference_speed", "hertz_mindlin with contact_time needs the impact speed at "
-                                   "which t_c holds (reference_speed)");
+        ep.fail("reference_speed",
+                "hertz_mindlin with contact_time needs the impact speed at "
+                "which t_c holds (reference_speed)");
     }
     d.wall = d.pair;
     d.wall.e = 1;  // elastic unless a wall driver says otherwise

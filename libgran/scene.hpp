@@ -61,7 +61,7 @@ struct Scene {
     std::vector<PluginEntry> observables;
     std::size_t frames = 0;
     double progress_interval = 10;
-    std::string box_location;  // "file:line:col: box" for errors found when placing particles
+    std::string box_location;     // "file:line:col: box" for errors found when placing particles
     std::string engine_location;  // "file:line:col: engine" for errors found building the engine
 };
 

@@ -22,7 +22,7 @@ struct SceneInfo {
     // observables (the drivers are built first).
     double peak_velocity = 0;
     double drive_period = 0;  // period of that wall's motion (0: none)
-    std::size_t index = 0;  // position of the plugin in its list (distinct random streams)
+    std::size_t index = 0;    // position of the plugin in its list (distinct random streams)
 };
 
 }  // namespace gran

@@ -50,7 +50,8 @@ class CollisionStatistics final : public Observable<D> {
         omega.value *= scale;
         omega.error *= scale;
         write_estimate(g, "frequency_per_particle", omega, "1/time", summary);
-        if (totals_pairs_.size() != ns * ns) return;  // the dem engine counts contacts in total only
+        if (totals_pairs_.size() != ns * ns)
+            return;  // the dem engine counts contacts in total only
         for (std::size_t a = 0; a < ns; ++a) {
             for (std::size_t b = a; b < ns; ++b) {
                 const auto& inc = pair_increments_[a * ns + b];

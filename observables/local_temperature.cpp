@@ -105,8 +105,8 @@ class LocalTemperature final : public Observable<D> {
         for (std::size_t i = 0; i < p.size(); ++i) {
             double z = p.r[i][axis_];
             if (!bounded_) z -= length_ * std::floor(z / length_);
-            const auto slab = std::min(
-                slabs_ - 1, static_cast<std::size_t>(std::max(0.0, z) / width_));
+            const auto slab =
+                std::min(slabs_ - 1, static_cast<std::size_t>(std::max(0.0, z) / width_));
             const auto& sp = table_.species[p.species[i]];
             double* s = &sums_[((block * slabs_ + slab) * phases_ + phase) * stride_];
             s[0] += 1;
@@ -162,9 +162,8 @@ class LocalTemperature final : public Observable<D> {
         const double slab_volume = cross_section_ * width_;
         std::vector<double> number(slabs_), phi(slabs_), phi_err(slabs_);
         for (std::size_t j = 0; j < slabs_; ++j) {
-            const Estimate e = jack([&](const Totals& t) {
-                return t.volume[j] / (double(t.samples) * slab_volume);
-            });
+            const Estimate e = jack(
+                [&](const Totals& t) { return t.volume[j] / (double(t.samples) * slab_volume); });
             phi[j] = e.value;
             phi_err[j] = e.error;
             number[j] = all.count[j] / double(samples_);
@@ -271,7 +270,8 @@ class LocalTemperature final : public Observable<D> {
         for (std::size_t b = 0; b < nblocks_; ++b) {
             if (b == skip) continue;
             t.samples += samples_in_block_[b];
-            for (int k = 0; k <= D; ++k) t.plain_sums[std::size_t(k)] += plain_[b * (D + 1) + std::size_t(k)];
+            for (int k = 0; k <= D; ++k)
+                t.plain_sums[std::size_t(k)] += plain_[b * (D + 1) + std::size_t(k)];
         }
         for (std::size_t j = 0; j < slabs_; ++j) {
             for (std::size_t ph = 0; ph < phases_; ++ph) {
@@ -330,8 +330,7 @@ const bool registered = register_plugin<Observable, LocalTemperature>(
      optional(real("bin_width", "", "length", "slab depth (default: the largest diameter)", 0,
                    1e308, true)),
      integer("phase_bins", "16",
-             "drive phases resolved in the local mean velocity (1 without a moving wall)", 1,
-             1000),
+             "drive phases resolved in the local mean velocity (1 without a moving wall)", 1, 1000),
      real("min_occupancy", "0.1", "grains",
           "slabs in the volume average: mean number of grains at least this", 0, 1e308),
      integer("blocks", "16", "blocks of samples for the jackknife error bars", 2, 1000)});

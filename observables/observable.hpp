@@ -21,7 +21,7 @@ struct SampleContext {
     double time = 0;
     bool measuring = false;            // false during equilibration
     std::size_t expected_samples = 0;  // samples the measurement phase will take
-    const EngineView<D>& engine;  // either engine (libgran/engine_view.hpp)
+    const EngineView<D>& engine;       // either engine (libgran/engine_view.hpp)
     const SpeciesTable& species;
 };
 

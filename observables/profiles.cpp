@@ -353,10 +353,9 @@ const bool registered = register_plugin<Observable, Profiles>(
      real("middle_window", "0.2", "",
           "width of the central window, as a fraction of the box length", 0, 1, true, false),
      integer("blocks", "16", "blocks of samples for the jackknife error bars", 2, 1000),
-     boolean(
-         "pressure", "true",
-         "measure the pressure tensor (kinetic + collisional virial); subscribes to collisions "
-         "(event_driven engine; not measured on the dem engine)"),
+     boolean("pressure", "true",
+             "measure the pressure tensor (kinetic + collisional virial); subscribes to collisions "
+             "(event_driven engine; not measured on the dem engine)"),
      optional(text("reference_species", "",
                    "species whose temperature divides the ratios (default: first)"))});
 

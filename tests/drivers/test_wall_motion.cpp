@@ -167,8 +167,8 @@ TEST(WallMotion, SinusoidFixedAndSawtooth) {
     EXPECT_TRUE(saw.is_static());
 }
 
-// The real sawtooth (dem engine): rises from -A to A at v0 = 2 A f into the gas, jumps back once per
-// period; the upper wall's mirrors it.
+// The real sawtooth (dem engine): rises from -A to A at v0 = 2 A f into the gas, jumps back once
+// per period; the upper wall's mirrors it.
 TEST(WallMotion, SawtoothRampRisesAtTwiceAmplitudeTimesFrequencyAndJumpsBackEachPeriod) {
     const double a = 0.2, f = 2.5, T = 1 / f;
     const WallMotion lo = WallMotion::sawtooth_ramp(a, f, 0, +1);

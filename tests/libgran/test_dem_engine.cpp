@@ -10,9 +10,9 @@
 #include <numbers>
 #include <random>
 #include <set>
-#include <utility>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libgran/dem_engine.hpp"

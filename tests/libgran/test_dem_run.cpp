@@ -26,8 +26,8 @@ double error(const YAML::Node& n) {
 
 // The 3D canonical bed of Bhateja et al. 2016 (5d x 5d periodic, 100 grains, A = d, sinusoid,
 // e_p = e_w = 0.9), with `extra` appended to the engine map and a tall box (open top in effect).
-std::string bed3d(double frequency, const std::string& engine_extra, double gravity,
-                  double height, const std::string& drivers_extra, double measurement) {
+std::string bed3d(double frequency, const std::string& engine_extra, double gravity, double height,
+                  const std::string& drivers_extra, double measurement) {
     return fmt::format(R"(
 dimension: 3
 seed: 4
@@ -45,9 +45,10 @@ observables:
   - {{type: temperatures}}
 run: {{unit: time, equilibration: {eq}, measurement: {m}, sample_interval: {si}}}
 )",
-                       fmt::arg("g", gravity), fmt::arg("h", height), fmt::arg("extra", engine_extra),
-                       fmt::arg("f", frequency), fmt::arg("drivers", drivers_extra),
-                       fmt::arg("eq", 20 / frequency), fmt::arg("m", measurement / frequency),
+                       fmt::arg("g", gravity), fmt::arg("h", height),
+                       fmt::arg("extra", engine_extra), fmt::arg("f", frequency),
+                       fmt::arg("drivers", drivers_extra), fmt::arg("eq", 20 / frequency),
+                       fmt::arg("m", measurement / frequency),
                        // incommensurate with the period: every drive phase is sampled
                        fmt::arg("si", 0.1373 / frequency));
 }
@@ -67,9 +68,9 @@ TEST(DemRun, EngineKeyRunsTheSceneOnTheDemEngineAndReportsIsolatedCollisions) {
         const double e = iso[k]["restitution"].as<double>();
         const double want = iso[k]["requested_restitution"].as<double>();
         EXPECT_NEAR(e / want, 1.0, 0.005) << k;
-        EXPECT_NEAR(iso[k]["measured_contact_time"].as<double>() /
-                        iso[k]["contact_time"].as<double>(),
-                    1.0, 0.01)
+        EXPECT_NEAR(
+            iso[k]["measured_contact_time"].as<double>() / iso[k]["contact_time"].as<double>(), 1.0,
+            0.01)
             << k;
     }
     // Temperature conventions: the plain average of local_temperature is the paper's m <c^2> / 2
@@ -87,9 +88,8 @@ TEST(DemRun, EngineKeyRunsTheSceneOnTheDemEngineAndReportsIsolatedCollisions) {
 // Momentum balance: averaged over the measurement, the base carries the weight of the bed (the
 // top wall is never reached), sum F_n dt / (time area) = N m g / area.
 TEST(DemRun, VibratingBaseCarriesTheWeightOfTheBed) {
-    const YAML::Node s = testing::run_yaml(bed3d(0.5, ", friction: 0.4, tangential_damping_ratio: 1",
-                                                 -1, 40, "", 100),
-                                           "bed");
+    const YAML::Node s = testing::run_yaml(
+        bed3d(0.5, ", friction: 0.4, tangential_damping_ratio: 1", -1, 40, "", 100), "bed");
     const YAML::Node wp = s["observables"]["wall_pressure"];
     const double weight = wp["weight_per_area"].as<double>();
     EXPECT_DOUBLE_EQ(weight, 100.0 / 25.0);
@@ -101,16 +101,17 @@ TEST(DemRun, VibratingBaseCarriesTheWeightOfTheBed) {
 }
 
 // Bhateja et al. 2016, Fig. 6 and Sec. IV: without gravity, under a lid 10d above the base, the
-// only time scale is d / V_p, so T_z ~ V_p^2 whatever the other parameters. V_p = 2 pi f A from 1.6 to 6.3 d per unit time; fitted exponent within
-// 0.05 of 2. Smooth grains: with friction (c_t = c_n) the grains cluster under the lid and the
-// same precision needs runs ten times longer (studies/bhateja-2016 runs those).
+// only time scale is d / V_p, so T_z ~ V_p^2 whatever the other parameters. V_p = 2 pi f A from 1.6
+// to 6.3 d per unit time; fitted exponent within 0.05 of 2. Smooth grains: with friction (c_t =
+// c_n) the grains cluster under the lid and the same precision needs runs ten times longer
+// (studies/bhateja-2016 runs those).
 TEST(DemRun, WithoutGravityUnderALidTzGrowsAsTheSquareOfThePeakVelocity) {
     std::vector<double> vp, tz;
     for (double f : {0.25, 0.5, 1.0}) {
         // Box height: the base sweeps [0, 2A], the lid 10d above the base's mean position.
         const YAML::Node s = testing::run_yaml(
-            bed3d(f, "", 0, 11,
-                  "  - {type: static_wall, axis: z, side: upper, restitution: 0.9}", 100),
+            bed3d(f, "", 0, 11, "  - {type: static_wall, axis: z, side: upper, restitution: 0.9}",
+                  100),
             fmt::format("lid{}", f));
         const YAML::Node lt = s["observables"]["local_temperature"];
         vp.push_back(lt["peak_velocity"].as<double>());
@@ -160,7 +161,8 @@ run: {{unit: time, equilibration: 50, measurement: 3000, sample_interval: 0.0913
           dem["temperatures"]["ratios"]["heavy_over_light"]["gamma"], "T_heavy / T_light");
     agree(ed["local_temperature"]["T_y_volume"], dem["local_temperature"]["T_y_volume"],
           "T_y (volume average)");
-    agree(ed["local_temperature"]["T_y"], dem["local_temperature"]["T_y"], "T_y (particle average)");
+    agree(ed["local_temperature"]["T_y"], dem["local_temperature"]["T_y"],
+          "T_y (particle average)");
 }
 
 // The sawtooth wall of Barrat & Trizac 2002 is the limit A -> 0 at fixed v0 = 2 A f of a real
@@ -187,7 +189,8 @@ run: {{unit: time, equilibration: 50, measurement: 600, sample_interval: 0.5}}
     const YAML::Node a = ed["temperatures"]["T_mixture"], b = dem["temperatures"]["T_mixture"];
     const double sigma = std::hypot(error(a), error(b));
     EXPECT_LT(sigma, 0.02 * value(a));
-    EXPECT_NEAR(value(a), value(b), 3 * sigma) << "event-driven " << value(a) << " dem " << value(b);
+    EXPECT_NEAR(value(a), value(b), 3 * sigma)
+        << "event-driven " << value(a) << " dem " << value(b);
 }
 
 // What the dem engine cannot run is refused before running, naming file, line and key.
