@@ -16,8 +16,9 @@
 //                   slab; z measured from the mean position of the lower wall of the axis;
 //   particle average  T_a = sum over all grains m c_a^2 / (2 count): each grain counts once;
 //   volume average    T_a^vol = mean of T_a(z) over the slabs of the bed, the paper's
-//                     T = int T(r) dV / V (Eq. 1); the bed is the slabs holding at least
-//                     `min_occupancy` grains on average (the paper does not say where its V ends);
+//                     T = int T(r) dV / V (Eq. 1); the bed is the slabs from the lowest one a grain
+//                     visited to the highest holding at least `min_occupancy` grains on average
+//                     (the paper does not say where its V ends);
 //   plain average     T_a^plain = sum m (v_a - V_a)^2 / (2 count), V the instantaneous
 //                     centre-of-mass velocity of all grains: the fluctuation about "the mean
 //                     velocity" without any local resolution (it keeps the collective motion of
@@ -152,10 +153,18 @@ class LocalTemperature final : public Observable<D> {
             return e;
         };
 
-        // Slabs of the bed (for the volume average): mean occupancy >= min_occupancy.
+        // Slabs of the bed (for the volume average): from the lowest slab a grain visited up to
+        // the highest slab holding at least min_occupancy grains on average. Contiguous: the few
+        // hot grains just above the base belong to the bed however rarely they are there (a
+        // per-slab occupancy cut would drop that slab or not from one W to the next).
         std::vector<std::size_t> bed;
+        std::size_t lo = slabs_, hi = 0;
         for (std::size_t j = 0; j < slabs_; ++j) {
-            if (all.count[j] / double(samples_) >= min_occupancy_) bed.push_back(j);
+            if (all.count[j] > 0 && lo == slabs_) lo = j;
+            if (all.count[j] / double(samples_) >= min_occupancy_) hi = j;
+        }
+        for (std::size_t j = lo; j <= hi && j < slabs_; ++j) {
+            if (all.count[j] > 0) bed.push_back(j);
         }
         g.write_scalar("bed_slabs", static_cast<std::int64_t>(bed.size()));
 
@@ -332,7 +341,9 @@ const bool registered = register_plugin<Observable, LocalTemperature>(
      integer("phase_bins", "16",
              "drive phases resolved in the local mean velocity (1 without a moving wall)", 1, 1000),
      real("min_occupancy", "0.1", "grains",
-          "slabs in the volume average: mean number of grains at least this", 0, 1e308),
+          "top of the bed for the volume average: the highest slab with at least this many grains "
+          "on average (the bed starts at the lowest slab a grain visited)",
+          0, 1e308),
      integer("blocks", "16", "blocks of samples for the jackknife error bars", 2, 1000)});
 
 }  // namespace
