@@ -10,10 +10,11 @@ the number the paper prints (read from paper.yaml), empty where the paper gives 
 one-standard-error bar of `measured` (gran's jackknife block errors, fit covariances, propagated),
 empty when there is none. A study whose results are missing is skipped with a note.
 
-Conventions (README.md): Tbar = T_z / (m V_p^2) with T_z = m <w'^2> / 2 about the local
-(slab, drive phase) mean velocity; the vertical axis is z in 3D and y in 2D (gran names the
-component after the axis, so the 2D "T_z" of the paper is gran's T_y). Two averages: `volume`
-(mean of the slab temperatures over the bed, the paper's Eq. (1)) and `particle` (each grain once).
+Conventions (README.md): Tbar = T_z / (m V_p^2) with T_z = m <w'^2> / 2 (Eq. (5)); the vertical
+axis is z in 3D and y in 2D (gran names the component after the axis, so the 2D "T_z" of the paper
+is gran's T_y). Three averages (DEFINITIONS): `volume` (mean of the slab temperatures over the bed,
+the paper's Eq. (1)) and `particle` (each grain once), both about the local (slab, drive phase)
+mean velocity, and `plain` (each grain once, about the centre-of-mass velocity).
 Units: d, m, sqrt(d/g): W = V_p^2, T / (m g d) = T.
 """
 import csv
@@ -399,23 +400,24 @@ def fig6_rows(directory):
     return rows
 
 
-def parameter_curves(directory, sweeps):
+def parameter_curves(directory, sweeps, definition="volume"):
     """Figs. 9-10: {point: (W, Vp, Tbar, Tbar error, T)} for the variants of parameters-2d.yaml and
-    the canonical rough 2D system on the same W grid (from sweep-2d.yaml)."""
+    the canonical rough 2D system on the same W grid (from sweep-2d.yaml); {} when the runs lack
+    the definition."""
     study = load(directory, "parameters-2d")
-    if study is None:
+    if study is None or definition not in study.definitions():
         return {}
     out = {}
     for point in study.points():
-        w, y, e = study.curve(point, "volume")
-        _, t, _ = study.curve(point, "volume", scaled=False)
+        w, y, e = study.curve(point, definition)
+        _, t, _ = study.curve(point, definition, scaled=False)
         out[point] = (w, np.sqrt(w), y, e, t)
     s2 = sweeps.get("2D")
     if s2 is not None and out:
         grid = next(iter(out.values()))[0]
         runs = [s2.at("sweep2d_rough", wv) for wv in grid]
-        y = np.array([s2.tbar(r, "volume") for r in runs])
-        t = np.array([s2.temperature(r, "volume")[0] for r in runs])
+        y = np.array([s2.tbar(r, definition) for r in runs])
+        t = np.array([s2.temperature(r, definition)[0] for r in runs])
         out["par2d_canonical"] = (grid, np.sqrt(grid), y[:, 0], y[:, 1], t)
     return out
 
@@ -429,15 +431,19 @@ def parameter_alphas(curves):
     return out
 
 
-def fig9_10_rows(curves):
-    """alpha over [W_f, W_2] per variant; k_n effect; the trends in e_p and N."""
+def fig9_10_rows(curves, definition):
+    """alpha over [W_f, W_2] per variant; k_n effect; the trends in e_p and N (rows tagged with
+    the temperature definition)."""
     rows, alpha = [], {}
+    if not curves:
+        return rows
     for point, (wf, wtwo, a, ae, n) in sorted(parameter_alphas(curves).items()):
         alpha[point] = (a, ae)
         paper = PAPER["fig10"]["alpha_deep_bed"] if point in ("par2d_N6", "par2d_N8") else None
-        rows += [(f"fig10_{point}_W_f", None, wf, None), (f"fig10_{point}_W_2", None, wtwo, None),
-                 (f"fig10_{point}_alpha_Wf_W2", paper, a, ae),
-                 (f"fig10_{point}_alpha_points", None, n, None)]
+        rows += [(f"fig10_{point}_{definition}_W_f", None, wf, None),
+                 (f"fig10_{point}_{definition}_W_2", None, wtwo, None),
+                 (f"fig10_{point}_{definition}_alpha_Wf_W2", paper, a, ae),
+                 (f"fig10_{point}_{definition}_alpha_points", None, n, None)]
     if "par2d_canonical" in curves:
         w0, _, y0, e0, _ = curves["par2d_canonical"]
         for kn in ("par2d_kn2e4", "par2d_kn2e6"):
@@ -447,18 +453,21 @@ def fig9_10_rows(curves):
                 k = int(np.argmax(dev))
                 yk, ek = curves[kn][2][m][k], curves[kn][3][m][k]
                 err = ratio(yk, ek, y0[m][k], e0[m][k])[1]
-                rows.append((f"fig9a_{kn}_max_rel_diff_vs_kn2e5", 0, dev[k], err))
+                rows.append((f"fig9a_{kn}_{definition}_max_rel_diff_vs_kn2e5", 0, dev[k], err))
     order = {"e_p": ("par2d_e0.7", "par2d_e0.8", "par2d_canonical", "par2d_e0.95"),
              "N": ("par2d_N2", "par2d_N3", "par2d_canonical", "par2d_N6", "par2d_N8"),
              "mu_p": ("par2d_mu0.1", "par2d_canonical", "par2d_mu0.8")}
     for par, pts in order.items():
         a = [alpha[p][0] for p in pts if p in alpha]
         if len(a) > 1:
-            rows.append((f"fig10_alpha_{par}_monotonic_increasing", None,
+            rows.append((f"fig10_alpha_{par}_{definition}_monotonic_increasing", None,
                          int(all(np.diff(a) > 0)), None))
-            rows.append((f"fig10_alpha_{par}_range_max_minus_min", None, max(a) - min(a), None))
+            rows.append((f"fig10_alpha_{par}_{definition}_monotonic_decreasing", None,
+                         int(all(np.diff(a) < 0)), None))
+            rows.append((f"fig10_alpha_{par}_{definition}_range_max_minus_min", None,
+                         max(a) - min(a), None))
     if "par2d_N3" in alpha and "par2d_canonical" in alpha:
-        rows.append(("fig10_alpha_N4_minus_N3", 0,
+        rows.append((f"fig10_alpha_N4_minus_N3_{definition}", 0,
                      alpha["par2d_canonical"][0] - alpha["par2d_N3"][0],
                      math.hypot(alpha["par2d_canonical"][1], alpha["par2d_N3"][1])))
     return rows
@@ -586,7 +595,8 @@ def all_rows(directory):
     rows += table1_rows(sweeps)
     rows += table2_fig7_rows(directory, sweeps)
     rows += fig6_rows(directory)
-    rows += fig9_10_rows(parameter_curves(directory, sweeps))
+    for d in DEFINITIONS:
+        rows += fig9_10_rows(parameter_curves(directory, sweeps, d), d)
     rows += fig11_rows(fig11_data(directory))
     rows += engines_rows(directory)
     rows += profile_rows(directory, sweeps)

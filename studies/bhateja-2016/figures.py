@@ -4,10 +4,11 @@
 Usage: /usr/bin/python3 studies/bhateja-2016/figures.py [RESULTS_DIR]
 
 Writes RESULTS_DIR/figures/*.png (one per paper figure or pair of figures, as named below); a
-figure whose study has no results yet is skipped with a note. Filled symbols: volume average
-(the paper's Eq. (1)); open symbols: particle average. Error bars: one standard error (gran's
-jackknife block errors). Every plotted number comes from the result files; the only curves not
-measured are the paper's Table III algebraic fits (dotted, labelled "paper").
+figure whose study has no results yet is skipped with a note. Filled circles: volume average
+(the paper's Eq. (1)); open circles: particle average; open squares: plain average (about the
+centre-of-mass velocity). Error bars: one standard error (gran's jackknife block errors). Every
+plotted number comes from the result files; the only curves not measured are the paper's
+Table III algebraic fits (dashed/dotted, labelled "paper").
 """
 import sys
 from pathlib import Path
@@ -149,7 +150,7 @@ PARAM_PANELS = (("(a) k_n", ("par2d_kn2e4", "par2d_canonical", "par2d_kn2e6"),
                  ("2", "3", "4", "6", "8")))
 
 
-def fig9_10(curves, out):
+def fig9_10(curves, plain, out):
     if not curves:
         return
     fig, axes = plt.subplots(2, 2, figsize=(11, 8))
@@ -162,16 +163,20 @@ def fig9_10(curves, out):
         label(ax, "W", "T_z/(m V_p^2) (volume)", f"2D rough, {title}")
     save(fig, out, "fig9", "Fig. 9: one parameter at a time (2D rough canonical: k_n 2e5, e 0.9, "
          "mu 0.4, N 4)")
-    alphas = parameter_alphas(curves)
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
-    for ax, (title, points, names) in zip(axes, PARAM_PANELS[1:]):
-        x = [float(n) for p, n in zip(points, names) if p in alphas]
-        a = np.array([alphas[p][2:4] for p in points if p in alphas])
-        ax.errorbar(x, a[:, 0], yerr=a[:, 1], fmt="o-", capsize=2)
-        for xi, p in zip(x, [p for p in points if p in alphas]):
-            ax.annotate(f"[{alphas[p][0]:.3g}, {alphas[p][1]:.3g}]", (xi, alphas[p][2]),
-                        fontsize=6, textcoords="offset points", xytext=(2, 4))
-        label(ax, title.split(") ")[1], "alpha over [W_f, W_2]", title, legend=False)
+    for d, c in (("volume", curves), ("plain", plain)):
+        alphas = parameter_alphas(c)
+        for ax, (title, points, names) in zip(axes, PARAM_PANELS[1:]):
+            x = [float(n) for p, n in zip(points, names) if p in alphas]
+            if not x:
+                continue
+            a = np.array([alphas[p][2:4] for p in points if p in alphas])
+            marker, face, line = STYLE[d]
+            ax.errorbar(x, a[:, 0], yerr=a[:, 1], fmt=marker + line, mfc=face, capsize=2, label=d)
+            for xi, p in zip(x, [p for p in points if p in alphas]):
+                ax.annotate(f"[{alphas[p][0]:.3g}, {alphas[p][1]:.3g}]", (xi, alphas[p][2]),
+                            fontsize=6, textcoords="offset points", xytext=(2, 4))
+            label(ax, title.split(") ")[1], "alpha over [W_f, W_2]", title)
     save(fig, out, "fig10", "Fig. 10: alpha of T_z ~ V_p^alpha over [W_f, W_2] (annotated; W_2: "
          "Tbar within 10% of its value at W = 135)")
 
@@ -316,7 +321,8 @@ def main():
         phi_profiles(sweeps, out)
         fig12_13(directory, sweeps, out)
     fig6(directory, out)
-    fig9_10(parameter_curves(directory, sweeps), out)
+    fig9_10(parameter_curves(directory, sweeps), parameter_curves(directory, sweeps, "plain"),
+            out)
     fig11(directory, out)
     engines(directory, out)
     print(f"{out}: {', '.join(sorted(p.stem for p in out.glob('*.png')))}")
