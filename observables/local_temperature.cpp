@@ -12,8 +12,9 @@
 // W ~ 1); about a single mean velocity it would have T_z ~ m V_p^2 / 4.
 //
 // Reported:
-//   local profiles  T_a(z) = sum m c_a^2 / (2 count) per slab, volume fraction phi(z), grains per
-//                   slab; z measured from the mean position of the lower wall of the axis;
+//   local profiles  T_a(z) = sum m c_a^2 / (2 count) per slab, the same about the centre-of-mass
+//                   velocity (T_a_plain_profile), volume fraction phi(z), grains per slab; z
+//                   measured from the mean position of the lower wall of the axis;
 //   particle average  T_a = sum over all grains m c_a^2 / (2 count): each grain counts once;
 //   volume average    T_a^vol = mean of T_a(z) over the slabs of the bed, the paper's
 //                     T = int T(r) dV / V (Eq. 1); the bed is the slabs from the lowest one a grain
@@ -79,6 +80,7 @@ class LocalTemperature final : public Observable<D> {
         stride_ = 3 + 2 * D;  // count, volume, mass, sum m v_a (D), sum m v_a^2 (D)
         sums_.assign(nblocks_ * slabs_ * phases_ * stride_, 0.0);
         plain_.assign(nblocks_ * (D + 1), 0.0);
+        plain_slab_.assign(nblocks_ * slabs_ * D, 0.0);
         samples_in_block_.assign(nblocks_, 0);
     }
 
@@ -110,6 +112,9 @@ class LocalTemperature final : public Observable<D> {
                 std::min(slabs_ - 1, static_cast<std::size_t>(std::max(0.0, z) / width_));
             const auto& sp = table_.species[p.species[i]];
             double* s = &sums_[((block * slabs_ + slab) * phases_ + phase) * stride_];
+            double* ps = &plain_slab_[(block * slabs_ + slab) * D];
+            for (int a = 0; a < D; ++a)
+                ps[a] += sp.mass * (p.v[i][a] - vcm[a]) * (p.v[i][a] - vcm[a]);
             s[0] += 1;
             s[1] += vd * std::pow(sp.diameter, D);
             s[2] += sp.mass;
@@ -194,6 +199,14 @@ class LocalTemperature final : public Observable<D> {
             g.write("T_" + c + "_profile", val);
             g.write("T_" + c + "_profile_error", err);
             g.attr_on("T_" + c + "_profile", "unit", "energy");
+            for (std::size_t j = 0; j < slabs_; ++j) {
+                const Estimate e = jack([&](const Totals& t) { return t.plain_local(j, a); });
+                val[j] = e.value;
+                err[j] = e.error;
+            }
+            g.write("T_" + c + "_plain_profile", val);
+            g.write("T_" + c + "_plain_profile_error", err);
+            g.attr_on("T_" + c + "_plain_profile", "unit", "energy");
             const Estimate tp = jack([&](const Totals& t) { return t.particle_average(a); });
             const Estimate tv = jack([&](const Totals& t) { return t.volume_average(bed, a); });
             const Estimate tb = jack([&](const Totals& t) { return t.plain(a); });
@@ -244,7 +257,11 @@ class LocalTemperature final : public Observable<D> {
             return plain_sums[D] > 0 ? 0.5 * plain_sums[std::size_t(a)] / plain_sums[D] : kNaN;
         }
         std::vector<double> count, volume;
-        std::vector<std::array<double, D>> sum_mc2;  // per slab: sum m c_a^2 about u(z, phase)
+        std::vector<std::array<double, D>> sum_mc2;    // per slab: sum m c_a^2 about u(z, phase)
+        std::vector<std::array<double, D>> plain_mc2;  // per slab: sum m (v_a - V_a)^2
+        double plain_local(std::size_t j, int a) const {
+            return count[j] > 0 ? 0.5 * plain_mc2[j][std::size_t(a)] / count[j] : kNaN;
+        }
         double local(std::size_t j, int a) const {
             return count[j] > 0 ? 0.5 * sum_mc2[j][std::size_t(a)] / count[j] : kNaN;
         }
@@ -275,12 +292,18 @@ class LocalTemperature final : public Observable<D> {
         t.count.assign(slabs_, 0);
         t.volume.assign(slabs_, 0);
         t.sum_mc2.assign(slabs_, std::array<double, D>{});
+        t.plain_mc2.assign(slabs_, std::array<double, D>{});
         std::vector<double> cell(stride_);
         for (std::size_t b = 0; b < nblocks_; ++b) {
             if (b == skip) continue;
             t.samples += samples_in_block_[b];
             for (int k = 0; k <= D; ++k)
                 t.plain_sums[std::size_t(k)] += plain_[b * (D + 1) + std::size_t(k)];
+            for (std::size_t j = 0; j < slabs_; ++j) {
+                for (int a = 0; a < D; ++a)
+                    t.plain_mc2[j][std::size_t(a)] +=
+                        plain_slab_[(b * slabs_ + j) * D + std::size_t(a)];
+            }
         }
         for (std::size_t j = 0; j < slabs_; ++j) {
             for (std::size_t ph = 0; ph < phases_; ++ph) {
@@ -325,7 +348,8 @@ class LocalTemperature final : public Observable<D> {
     std::size_t slabs_ = 1, stride_ = 1, samples_ = 0;
     double mass_ = 1, diameter_ = 1, g_ = 0;
     std::vector<double> sums_;
-    std::vector<double> plain_;  // per block: sum m (v_a - V_a)^2 (D), count
+    std::vector<double> plain_;       // per block: sum m (v_a - V_a)^2 (D), count
+    std::vector<double> plain_slab_;  // per block and slab: sum m (v_a - V_a)^2 (D)
     std::vector<std::size_t> samples_in_block_;
 };
 
