@@ -128,8 +128,10 @@ class Study:
         return h5py.File(self.directory / f"{row['run']}.h5", "r")
 
     def profile(self, row):
-        """Local profiles of a run: dict z, T (vertical), T_error, phi, phi_error, grains, bed
-        (mask of the slabs of gran's volume average), W, Vp."""
+        """Local profiles of a run: dict z, T (vertical, about the slab-and-phase mean), T_error,
+        T_plain, T_plain_error (vertical, about the centre-of-mass velocity of all grains; NaN in
+        results made before gran wrote it), phi, phi_error, grains, bed (mask of the slabs of
+        gran's volume average), W, Vp."""
         with self.h5(row) as f:
             g = f["observables/local_temperature"]
             c = "T_z" if "T_z_profile" in g else "T_y"
@@ -145,8 +147,13 @@ class Study:
                 bed = grains >= occupancy
             if bed.sum() != int(g["bed_slabs"][()]):
                 raise ValueError(f"{row['run']}: cannot reconstruct the bed of the volume average")
+            nan = np.full(len(grains), np.nan)
+            plain = c + "_plain_profile"
             return {"z": g["z"][:], "T": g[c + "_profile"][:],
-                    "T_error": g[c + "_profile_error"][:], "phi": g["phi"][:],
+                    "T_error": g[c + "_profile_error"][:],
+                    "T_plain": g[plain][:] if plain in g else nan,
+                    "T_plain_error": g[plain + "_error"][:] if plain in g else nan,
+                    "phi": g["phi"][:],
                     "phi_error": g["phi_error"][:], "grains": grains, "bed": bed,
                     "W": float(g["W"][()]), "Vp": float(g["peak_velocity"][()])}
 
@@ -535,10 +542,42 @@ def engines_rows(directory):
     return rows
 
 
-def profile_rows(directory, sweeps):
-    """Figs. 12-16: height of the hottest slab (bed slabs only) at W = 22.35 for N = 4, 6, 8
-    (paper 7-10 d for shallow beds); same for the N = 4 smooth and rough 3D sweep."""
+PROFILE_KEYS = (("", "T"), ("_plain", "T_plain"))  # row infix, profile key: local, plain
+
+
+def hottest(p, key="T"):
+    """Index of the hottest bed slab of a profile (key "T": local, "T_plain": about the centre of
+    mass), or None when the profile is missing."""
+    t = np.where(p["bed"], p[key], -np.inf)
+    return None if not np.any(np.isfinite(t) & p["bed"]) else int(np.nanargmax(t))
+
+
+def hottest_rows(tag, p, paper=None):
+    """Height of the hottest bed slab, local and plain profile (error: half a slab), and the mean
+    temperature of the bed slabs 7-10 d above the base (where the paper puts the hottest region
+    of shallow smooth beds at W = 22.35) over that maximum (1 if the paper's window held it)."""
     rows = []
+    for infix, key in PROFILE_KEYS:
+        k = hottest(p, key)
+        if k is None:
+            continue
+        rows.append((f"{tag}{infix}_hottest_slab_z", paper, p["z"][k], 0.5))
+        window = p["bed"] & (p["z"] >= 7) & (p["z"] <= 10)
+        if window.any():
+            mean = float(np.mean(p[key][window]))
+            mean_err = math.sqrt(float(np.sum(p[key + "_error"][window] ** 2))) / window.sum()
+            rows.append((f"{tag}{infix}_T_z7-10_over_max", None,
+                         *ratio(mean, mean_err, p[key][k], p[key + "_error"][k])))
+    return rows
+
+
+def profile_rows(directory, sweeps):
+    """Figs. 12-16: height of the hottest slab (bed slabs only) of the local profile (about the
+    slab-and-phase mean) and of the plain profile (about the centre-of-mass velocity) at
+    W = 22.35 for N = 4, 6, 8 (paper 7-10 d for shallow smooth beds); same for the N = 4 smooth
+    and rough 3D sweep at the W of Figs. 12-13, with the densest slab (Fig. 15)."""
+    rows = []
+    paper = "7-10"  # Sec. VI, Fig. 12(b): smooth 3D, shallow beds, W = 22.35
     study = load(directory, "profiles-3d")
     if study is not None:
         for point in study.points():
@@ -546,38 +585,43 @@ def profile_rows(directory, sweeps):
                 run = study.at(point, 22.35)
             except KeyError:
                 continue
-            p = study.profile(run)
-            k = int(np.argmax(np.where(p["bed"], p["T"], -1)))
-            rows.append((f"fig12_W22.35_{point}_hottest_slab_z", "7-10" if point.endswith("N4")
-                         else None, p["z"][k], 0.5))
+            rows += hottest_rows(f"fig12_W22.35_{point}", study.profile(run),
+                                 paper if point.endswith("N4") else None)
     s3 = sweeps.get("3D")
     if s3 is not None:
         for case in ("smooth", "rough"):
             for wt in (5.58, 22.35, 50.3, 85.01):
                 p = s3.profile(s3.at(f"sweep3d_{case}", wt))
-                k = int(np.argmax(np.where(p["bed"], p["T"], -1)))
+                rows += hottest_rows(f"fig14_3d_{case}_W{wt}", p,
+                                     paper if (case, wt) == ("smooth", 22.35) else None)
                 j = int(np.argmax(np.where(p["bed"], p["phi"], -1)))
-                rows.append((f"fig14_3d_{case}_W{wt}_hottest_slab_z", None, p["z"][k], 0.5))
                 rows.append((f"fig15_3d_{case}_W{wt}_densest_slab_z", None, p["z"][j], 0.5))
     return rows
 
 
 def lid_rows(sweeps):
-    """The open top is a wall 100 d up: hits on it per unit time over hits on the base, at
-    W = 85.01 (near the end of the paper's sweep) and the largest W of each case (0 = never
-    reached)."""
+    """The open top is an elastic wall (2D: 300 d, 3D: 100 d above the base): hits on it per unit
+    time over hits on the base, at W = 85.01 (near the end of the paper's sweep) and the largest
+    W of each case (0 = never reached), and the largest ratio over the sweep with its W."""
     rows = []
     for dim, study in sweeps.items():
         if study is None:
             continue
-        for case, run in ((c, r) for c in ("smooth", "rough")
-                          for r in (study.at(f"sweep{dim.lower()}_{c}", 85.01),
-                                    study.runs(f"sweep{dim.lower()}_{c}")[-1])):
-            up = study.get(run, "observables.wall_pressure.upper.collision_frequency")
-            low = study.get(run, "observables.wall_pressure.lower.collision_frequency")
-            value = ratio(*up, *low) if up[0] > 0 else (0.0, None)
-            rows.append((f"top_wall_hits_over_base_hits_{dim.lower()}_{case}_W{study.w(run):.3g}",
-                         None, *value))
+        for case in ("smooth", "rough"):
+            point = f"sweep{dim.lower()}_{case}"
+            tag = f"top_wall_hits_over_base_hits_{dim.lower()}_{case}"
+            values = []
+            for run in study.runs(point):
+                up = study.get(run, "observables.wall_pressure.upper.collision_frequency")
+                low = study.get(run, "observables.wall_pressure.lower.collision_frequency")
+                values.append((study.w(run), *(ratio(*up, *low) if up[0] > 0 else (0.0, None))))
+            for run in (study.at(point, 85.01), study.runs(point)[-1]):
+                wv = study.w(run)
+                _, v, e = next(x for x in values if x[0] == wv)
+                rows.append((f"{tag}_W{wv:.3g}", None, v, e))
+            wv, v, e = max(values, key=lambda x: x[1])
+            rows.append((f"{tag}_max_over_sweep", None, v, e))
+            rows.append((f"{tag}_max_over_sweep_W", None, wv, None))
     return rows
 
 

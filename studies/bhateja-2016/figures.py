@@ -200,9 +200,14 @@ def fig11(directory, out):
 
 
 def profile_panel(ax, p, color, lbl, key="T", scale=1.0):
+    """One profile over the bed slabs: local T (filled circles), plain T (key "T_plain": open
+    squares, dashed) or phi."""
     bed = p["bed"]
-    ax.errorbar(p["z"][bed], p[key][bed] / scale, yerr=p[key + "_error"][bed] / scale, fmt="o-",
-                ms=3, lw=0.9, capsize=1.5, color=color, label=lbl)
+    if np.all(np.isnan(p[key][bed])):
+        return
+    marker, face, line = STYLE["plain" if key == "T_plain" else "volume"]
+    ax.errorbar(p["z"][bed], p[key][bed] / scale, yerr=p[key + "_error"][bed] / scale,
+                fmt=marker + line, mfc=face, ms=3, lw=0.9, capsize=1.5, color=color, label=lbl)
 
 
 def fig12_13(directory, sweeps, out):
@@ -210,38 +215,48 @@ def fig12_13(directory, sweeps, out):
     if study is None:
         return
     s3 = sweeps["3D"]
-    fig, axes = plt.subplots(1, 5, figsize=(20, 4))
-    for ax, w in zip(axes, (5.58, 22.35, 50.3, 68.46, 85.01)):
-        for k, point in enumerate(study.points()):
-            try:
-                profile_panel(ax, study.profile(study.at(point, w)), f"C{k}",
-                              point.removeprefix("prof3d_"))
-            except KeyError:
-                pass
-        if w > 60 and s3 is not None:  # Fig. 13: only the N = 4 sweep has these W
-            profile_panel(ax, s3.profile(s3.at("sweep3d_smooth", w)), "C0", "N4 (sweep-3d)")
-        label(ax, "z/d (above the base's mean position)", "T_z(z) [m g d]", f"W = {w}")
-    save(fig, out, "fig12-13", "Figs. 12-13: local T_z(z), 3D smooth, several N (bed slabs only)")
+    fig, axes = plt.subplots(2, 5, figsize=(20, 8))
+    for row, (key, name) in enumerate((("T", "local"), ("T_plain", "plain"))):
+        for ax, w in zip(axes[row], (5.58, 22.35, 50.3, 68.46, 85.01)):
+            for k, point in enumerate(study.points()):
+                try:
+                    profile_panel(ax, study.profile(study.at(point, w)), f"C{k}",
+                                  point.removeprefix("prof3d_"), key=key)
+                except KeyError:
+                    pass
+            if w > 60 and s3 is not None:  # Fig. 13: only the N = 4 sweep has these W
+                profile_panel(ax, s3.profile(s3.at("sweep3d_smooth", w)), "C0", "N4 (sweep-3d)",
+                              key=key)
+            if w == 22.35:
+                ax.axvspan(7, 10, color="0.9", zorder=0, label="paper: hottest 7-10 d")
+            label(ax, "z/d (above the base's mean position)", f"T_z(z) [m g d], {name}",
+                  f"W = {w}, {name}")
+    save(fig, out, "fig12-13", "Figs. 12-13: T_z(z), 3D smooth, several N (bed slabs only); top: "
+         "about the slab-and-phase mean, bottom: about the centre-of-mass velocity")
 
 
 def fig14_15(sweeps, out):
     s3 = sweeps["3D"]
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8))
+    fig, axes = plt.subplots(3, 2, figsize=(11, 12))
     for col, (case, _) in enumerate(CASES):
         for k, w in enumerate(WPROF):
             p = s3.profile(s3.at(f"sweep3d_{case}", w))
             profile_panel(axes[0, col], p, f"C{k}", f"W = {w}")
-            profile_panel(axes[1, col], p, f"C{k}", f"W = {w}", key="phi")
-        label(axes[0, col], "z/d", "T_z(z) [m g d]", f"3D {case}: temperature")
-        label(axes[1, col], "z/d", "phi(z)", f"3D {case}: volume fraction")
-    save(fig, out, "fig14-15", "Figs. 14-15: local T_z(z) and phi(z), 3D, N = 4")
+            profile_panel(axes[1, col], p, f"C{k}", f"W = {w}", key="T_plain")
+            profile_panel(axes[2, col], p, f"C{k}", f"W = {w}", key="phi")
+        label(axes[0, col], "z/d", "T_z(z) [m g d]", f"3D {case}: local temperature")
+        label(axes[1, col], "z/d", "T_z(z) [m g d]",
+              f"3D {case}: plain temperature (about the centre-of-mass velocity)")
+        label(axes[2, col], "z/d", "phi(z)", f"3D {case}: volume fraction")
+    save(fig, out, "fig14-15", "Figs. 14-15: T_z(z) (local and plain) and phi(z), 3D, N = 4")
 
 
 def fig16(sweeps, out):
     stations = (1.5, 3.5, 5.5, 8.5, 12.5)
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8))
+    fig, axes = plt.subplots(2, 4, figsize=(20, 8))
     for row, (dim, s) in enumerate(sweeps.items()):
-        for col, (case, _) in enumerate(CASES):
+        for col, ((case, _), (key, d)) in enumerate(
+                (c, k) for c in CASES for k in (("T", "volume"), ("T_plain", "plain"))):
             ax = axes[row, col]
             runs = [r for r in s.runs(f"sweep{dim.lower()}_{case}") if s.w(r) > LIFT_OFF]
             profs = [s.profile(r) for r in runs]
@@ -251,15 +266,17 @@ def fig16(sweeps, out):
                 for p in profs:
                     j = int(np.argmin(np.abs(p["z"] - z)))
                     ok = p["bed"][j]
-                    v.append((p["T"][j] / p["Vp"] ** 2, p["T_error"][j] / p["Vp"] ** 2) if ok
-                             else (np.nan, np.nan))
+                    v.append((p[key][j] / p["Vp"] ** 2, p[key + "_error"][j] / p["Vp"] ** 2)
+                             if ok else (np.nan, np.nan))
                 v = np.array(v)
-                ebar(ax, w, v[:, 0], v[:, 1], f"C{k}", "volume", f"z = {z} d")
-            _, y, e = s.curve(f"sweep{dim.lower()}_{case}", "volume")
-            ax.plot(w, y[-len(w):], "k-", lw=1.5, label="bulk (volume)")
+                ebar(ax, w, v[:, 0], v[:, 1], f"C{k}", d, f"z = {z} d")
+            _, y, e = s.curve(f"sweep{dim.lower()}_{case}", d)
+            ax.plot(w, y[-len(w):], "k-", lw=1.5, label=f"bulk ({d})")
             ax.set_xscale("log")
-            label(ax, "W", "T_z(z)/(m V_p^2)", f"{dim} {case}", fontsize=7)
-    save(fig, out, "fig16", "Fig. 16: scaled local temperature at fixed heights against W")
+            name = "local" if key == "T" else "plain"
+            label(ax, "W", "T_z(z)/(m V_p^2)", f"{dim} {case}, {name}", fontsize=7)
+    save(fig, out, "fig16", "Fig. 16: scaled T_z at fixed heights against W (local: about the "
+         "slab-and-phase mean; plain: about the centre-of-mass velocity)")
 
 
 def phi_profiles(sweeps, out):
