@@ -44,6 +44,15 @@ class EngineView {
     }
     // Surface position of a wall at time t (index 2 * axis + side), e.g. a vibrating base.
     virtual double wall_position(int code, double t) const = 0;
+    // Mean surface position of a wall over one period of its motion from t (period <= 0: at t),
+    // e.g. the mean height of a vibrating base that heights are measured from.
+    double mean_wall_position(int code, double t, double period) const {
+        if (!(period > 0)) return wall_position(code, t);
+        constexpr int k = 64;
+        double x = 0;
+        for (int i = 0; i < k; ++i) x += wall_position(code, t + period * i / k) / k;
+        return x;
+    }
 };
 
 template <int D>

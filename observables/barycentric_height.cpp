@@ -32,14 +32,8 @@ class BarycentricHeight final : public Observable<D> {
 
     void sample(const SampleContext<D>& ctx) override {
         if (!ctx.measuring) return;
-        if (h_.size() == 0) {
-            // Mean position of the lower wall over one drive period.
-            const int code = 2 * axis_;
-            base_ = 0;
-            const int k = period_ > 0 ? 64 : 1;
-            for (int i = 0; i < k; ++i)
-                base_ += ctx.engine.wall_position(code, ctx.time + period_ * i / k) / k;
-        }
+        // Heights from the mean position of the lower wall over one drive period.
+        if (h_.size() == 0) base_ = ctx.engine.mean_wall_position(2 * axis_, ctx.time, period_);
         const auto& p = ctx.engine.particles();
         double mz = 0, m = 0;
         for (std::size_t i = 0; i < p.size(); ++i) {

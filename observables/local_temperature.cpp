@@ -329,14 +329,7 @@ class LocalTemperature final : public Observable<D> {
 
     // Mean position of the lower wall of the axis over one drive period (0 on a periodic axis).
     double base_position(const SampleContext<D>& ctx) const {
-        if (!bounded_) return 0;
-        const int code = 2 * axis_;
-        if (!(period_ > 0)) return ctx.engine.wall_position(code, ctx.time);
-        double x = 0;
-        const int k = 64;
-        for (int i = 0; i < k; ++i)
-            x += ctx.engine.wall_position(code, ctx.time + period_ * i / k) / k;
-        return x;
+        return bounded_ ? ctx.engine.mean_wall_position(2 * axis_, ctx.time, period_) : 0.0;
     }
 
     const SpeciesTable& table_;
