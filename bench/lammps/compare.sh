@@ -28,35 +28,29 @@ out=${OUT:-$(mktemp -d /tmp/gran-vs-lammps.XXXXXX)}
 mkdir -p "$out"
 export OMP_NUM_THREADS=1
 
-median() { sort -g | awk '{a[NR] = $1} END {if (NR % 2) print a[(NR + 1) / 2]; else print (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
+# shellcheck source=../peer_compare.sh
+source "$here/../peer_compare.sh"
 
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo "# gran: $gran; LAMMPS: $($lmp -h | sed -n 2p | xargs); outputs in $out"
 printf '%6s %3s %14s %14s %14s %14s %9s %9s\n' N run gran_cpu gran_wall lammps_cpu lammps_wall \
     ratio_cpu ratio_wall
 for n in ${sizes//,/ }; do
-    if ((n < 10000)); then psteps=${PSTEPS_SMALL:-2e7}; else psteps=${PSTEPS_LARGE:-5e7}; fi
+    psteps=$(psteps_for "$n")
     : >"$out/ratios_$n.txt"
     for ((r = 1; r <= runs; ++r)); do
         g="$out/gran_${n}_$r.txt"
         l="$out/lammps_${n}_$r.txt"
-        "$gran" --sizes "$n" --particle-steps "$psteps" --warmup-periods "$warmup" >"$g" 2>&1
+        read -r gc gw < <(run_gran "$n" "$psteps" "$g")
         "$lmp" -in "$here/vibrated_bed.in" -log none -var N "$n" -var psteps "$psteps" \
             -var warmup_periods "$warmup" >"$l" 2>&1
-        read -r gc gw < <(awk '$1 == '"$n"' {print $4, $5}' "$g")
         # the first "Loop time" after the warm-up summary is the timed run's
         read -r lc lw < <(awk '
             /^vibrated_bed: after a warm-up/ {timed = 1; next}
             timed && /^Loop time of/ && !x {x = $4; s = $9; natoms = $12; next}
             timed && x && /% CPU use/ && !c {c = $1; sub("%", "", c)}
             END {printf "%.6g %.6g\n", natoms * s / (x * c / 100), natoms * s / x}' "$l")
-        rc=$(awk -v a="$gc" -v b="$lc" 'BEGIN {printf "%.4f", a / b}')
-        rw=$(awk -v a="$gw" -v b="$lw" 'BEGIN {printf "%.4f", a / b}')
-        echo "$gc $gw $lc $lw $rc $rw" >>"$out/ratios_$n.txt"
-        printf '%6s %3s %14.4g %14.4g %14.4g %14.4g %9s %9s\n' "$n" "$r" "$gc" "$gw" "$lc" "$lw" "$rc" "$rw"
+        record "$n" "$r" "$gc" "$gw" "$lc" "$lw"
     done
-    printf '%6s %3s %14.4g %14.4g %14.4g %14.4g %9s %9s\n' "$n" med \
-        "$(cut -d' ' -f1 "$out/ratios_$n.txt" | median)" "$(cut -d' ' -f2 "$out/ratios_$n.txt" | median)" \
-        "$(cut -d' ' -f3 "$out/ratios_$n.txt" | median)" "$(cut -d' ' -f4 "$out/ratios_$n.txt" | median)" \
-        "$(cut -d' ' -f5 "$out/ratios_$n.txt" | median)" "$(cut -d' ' -f6 "$out/ratios_$n.txt" | median)"
+    print_medians "$n"
 done

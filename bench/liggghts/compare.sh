@@ -31,25 +31,25 @@ out=${OUT:-$(mktemp -d /tmp/gran-vs-liggghts.XXXXXX)}
 mkdir -p "$out"
 export OMP_NUM_THREADS=1
 
-median() { sort -g | awk '{a[NR] = $1} END {if (NR % 2) print a[(NR + 1) / 2]; else print (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
+# shellcheck source=../peer_compare.sh
+source "$here/../peer_compare.sh"
 
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); load: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "# gran: $gran; LIGGGHTS: $(cd "$out" && "$lig" -h -log none | sed -n 1p | xargs); outputs in $out"
 printf '%6s %3s %14s %14s %14s %14s %9s %9s\n' N run gran_cpu gran_wall liggghts_cpu liggghts_wall \
     ratio_cpu ratio_wall
 for n in ${sizes//,/ }; do
-    if ((n < 10000)); then psteps=${PSTEPS_SMALL:-2e7}; else psteps=${PSTEPS_LARGE:-5e7}; fi
+    psteps=$(psteps_for "$n")
     : >"$out/ratios_$n.txt"
     for ((r = 1; r <= runs; ++r)); do
         g="$out/gran_${n}_$r.txt"
         l="$out/liggghts_${n}_$r.txt"
         c="$out/liggghts_cpu_${n}_$r.txt"
         rm -f "$c"
-        "$gran" --sizes "$n" --particle-steps "$psteps" --warmup-periods "$warmup" >"$g" 2>&1
+        read -r gc gw < <(run_gran "$n" "$psteps" "$g")
         # from $out, so that nothing (log.liggghts and the like) lands in the caller's directory
         (cd "$out" && "$lig" -in "$here/vibrated_bed.in" -log none -var dir "$here" -var N "$n" \
             -var psteps "$psteps" -var warmup_periods "$warmup" -var cpufile "$c" >"$l" 2>&1)
-        read -r gc gw < <(awk '$1 == '"$n"' {print $4, $5}' "$g")
         # CPU share of the timed run from the marks "before CPU WALL" and "after CPU WALL"
         share=$(awk '$1 == "before" {c0 = $2; w0 = $3} $1 == "after" {c1 = $2; w1 = $3}
                      END {printf "%.6f\n", (c1 - c0) / (w1 - w0)}' "$c")
@@ -62,14 +62,8 @@ for n in ${sizes//,/ }; do
             echo "N = $n run $r: no timing read; see $g and $l" >&2
             exit 1
         fi
-        rc=$(awk -v a="$gc" -v b="$lc" 'BEGIN {printf "%.4f", a / b}')
-        rw=$(awk -v a="$gw" -v b="$lw" 'BEGIN {printf "%.4f", a / b}')
-        echo "$gc $gw $lc $lw $rc $rw $share" >>"$out/ratios_$n.txt"
-        printf '%6s %3s %14.4g %14.4g %14.4g %14.4g %9s %9s\n' "$n" "$r" "$gc" "$gw" "$lc" "$lw" "$rc" "$rw"
+        record "$n" "$r" "$gc" "$gw" "$lc" "$lw" "$share"
     done
-    printf '%6s %3s %14.4g %14.4g %14.4g %14.4g %9s %9s\n' "$n" med \
-        "$(cut -d' ' -f1 "$out/ratios_$n.txt" | median)" "$(cut -d' ' -f2 "$out/ratios_$n.txt" | median)" \
-        "$(cut -d' ' -f3 "$out/ratios_$n.txt" | median)" "$(cut -d' ' -f4 "$out/ratios_$n.txt" | median)" \
-        "$(cut -d' ' -f5 "$out/ratios_$n.txt" | median)" "$(cut -d' ' -f6 "$out/ratios_$n.txt" | median)"
+    print_medians "$n"
 done
 echo "# load at the end: $(cut -d' ' -f1-3 /proc/loadavg)"

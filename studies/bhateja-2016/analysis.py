@@ -268,35 +268,40 @@ def acceptance_rows(study, dim, points, prefix):
     return rows
 
 
+def sweep_cases(sweeps):
+    """(dim, case, study, point name) of every smooth and rough sweep that has results."""
+    for dim, study in sweeps.items():
+        if study is None:
+            continue
+        for case in ("smooth", "rough"):
+            yield dim, case, study, f"sweep{dim.lower()}_{case}"
+
+
 def fig2_rows(sweeps):
     """Fig. 2: W_f and the peak of Tbar_z per case, the decay after it (value at W = 85.01, the
     last of the paper's printed W before 89.43, over the peak) and the largest volume fraction at
     W_f (paper: "about 0.2")."""
     rows = []
-    for dim, study in sweeps.items():
-        if study is None:
-            continue
-        for case in ("smooth", "rough"):
-            point = f"sweep{dim.lower()}_{case}"
-            for definition in study.definitions():
-                w, y, e = study.curve(point, definition)
-                wf, k = peak(w, y)
-                tag = f"fig2_{dim.lower()}_{case}_{definition}"
-                rows.append((f"{tag}_W_f", None, wf, None))
-                rows.append((f"{tag}_peak", None, y[k], e[k]))
-                j = int(np.argmin(np.abs(w - 85.01)))
-                rows.append((f"{tag}_T_W{w[j]:.4g}_over_peak", None,
-                             *ratio(y[j], e[j], y[k], e[k])))
-                j0 = int(np.argmin(np.abs(w - 0.894)))
-                rows.append((f"{tag}_T_W{w[j0]:.3g}_unfluidized", 0, y[j0], e[j0]))
-            w, y, _ = study.curve(point, "volume")
-            prof = study.profile(study.runs(point)[peak(w, y)[1]])
-            bed = prof["bed"]
-            k = int(np.argmax(np.where(bed, prof["phi"], -1)))
-            rows.append((f"fig2_{dim.lower()}_{case}_max_phi_profile_at_W_f", 0.2, prof["phi"][k],
-                         prof["phi_error"][k]))
-            rows.append((f"fig2_{dim.lower()}_{case}_bed_mean_phi_at_W_f", 0.2,
-                         float(np.mean(prof["phi"][bed])), None))
+    for dim, case, study, point in sweep_cases(sweeps):
+        for definition in study.definitions():
+            w, y, e = study.curve(point, definition)
+            wf, k = peak(w, y)
+            tag = f"fig2_{dim.lower()}_{case}_{definition}"
+            rows.append((f"{tag}_W_f", None, wf, None))
+            rows.append((f"{tag}_peak", None, y[k], e[k]))
+            j = int(np.argmin(np.abs(w - 85.01)))
+            rows.append((f"{tag}_T_W{w[j]:.4g}_over_peak", None,
+                         *ratio(y[j], e[j], y[k], e[k])))
+            j0 = int(np.argmin(np.abs(w - 0.894)))
+            rows.append((f"{tag}_T_W{w[j0]:.3g}_unfluidized", 0, y[j0], e[j0]))
+        w, y, _ = study.curve(point, "volume")
+        prof = study.profile(study.runs(point)[peak(w, y)[1]])
+        bed = prof["bed"]
+        k = int(np.argmax(np.where(bed, prof["phi"], -1)))
+        rows.append((f"fig2_{dim.lower()}_{case}_max_phi_profile_at_W_f", 0.2, prof["phi"][k],
+                     prof["phi_error"][k]))
+        rows.append((f"fig2_{dim.lower()}_{case}_bed_mean_phi_at_W_f", 0.2,
+                     float(np.mean(prof["phi"][bed])), None))
     return rows
 
 
@@ -604,24 +609,20 @@ def lid_rows(sweeps):
     time over hits on the base, at W = 85.01 (near the end of the paper's sweep) and the largest
     W of each case (0 = never reached), and the largest ratio over the sweep with its W."""
     rows = []
-    for dim, study in sweeps.items():
-        if study is None:
-            continue
-        for case in ("smooth", "rough"):
-            point = f"sweep{dim.lower()}_{case}"
-            tag = f"top_wall_hits_over_base_hits_{dim.lower()}_{case}"
-            values = []
-            for run in study.runs(point):
-                up = study.get(run, "observables.wall_pressure.upper.collision_frequency")
-                low = study.get(run, "observables.wall_pressure.lower.collision_frequency")
-                values.append((study.w(run), *(ratio(*up, *low) if up[0] > 0 else (0.0, None))))
-            for run in (study.at(point, 85.01), study.runs(point)[-1]):
-                wv = study.w(run)
-                _, v, e = next(x for x in values if x[0] == wv)
-                rows.append((f"{tag}_W{wv:.3g}", None, v, e))
-            wv, v, e = max(values, key=lambda x: x[1])
-            rows.append((f"{tag}_max_over_sweep", None, v, e))
-            rows.append((f"{tag}_max_over_sweep_W", None, wv, None))
+    for dim, case, study, point in sweep_cases(sweeps):
+        tag = f"top_wall_hits_over_base_hits_{dim.lower()}_{case}"
+        values = []
+        for run in study.runs(point):
+            up = study.get(run, "observables.wall_pressure.upper.collision_frequency")
+            low = study.get(run, "observables.wall_pressure.lower.collision_frequency")
+            values.append((study.w(run), *(ratio(*up, *low) if up[0] > 0 else (0.0, None))))
+        for run in (study.at(point, 85.01), study.runs(point)[-1]):
+            wv = study.w(run)
+            _, v, e = next(x for x in values if x[0] == wv)
+            rows.append((f"{tag}_W{wv:.3g}", None, v, e))
+        wv, v, e = max(values, key=lambda x: x[1])
+        rows.append((f"{tag}_max_over_sweep", None, v, e))
+        rows.append((f"{tag}_max_over_sweep_W", None, wv, None))
     return rows
 
 
