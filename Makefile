@@ -11,7 +11,7 @@ GRAN_WERROR ?= $(if $(CI),ON,OFF)
 CMAKE_FLAGS ?=
 
 .PHONY: deps configure build demo test validate bench format sanitize clean reproduce-barrat-trizac-2002 \
-  reproduce-mcnamara-falcon-2005 reproduce-bhateja-2016
+  reproduce-mcnamara-falcon-2005 reproduce-bhateja-2016 tradeoff
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \
@@ -89,3 +89,24 @@ sanitize:
 
 clean:
 	rm -rf $(BUILD_DIR) build-asan
+
+# Speed versus accuracy (issue #6, docs/choosing-speed-or-accuracy.md): `gran tradeoff` on the
+# Bhateja 3D rough bed and its frictionless twin (W = 20), the Barrat & Trizac Table I vibrated
+# mixture and the heated mixture (analytic reference: the Maxwellian theory). About 15 CPU minutes;
+# completed runs are reused. Writes results/tradeoff/<case>/<scene>.{tradeoff.md,tradeoff.csv,
+# tradeoff.png,study.h5}.
+TRADEOFF_OUT ?= results/tradeoff
+BH3D_W20 := --set drivers.0.frequency=0.711763 --set run.sample_interval=0.192901 \
+  --quantity observables.local_temperature.T_z_volume_scaled \
+  --quantity observables.local_temperature.T_z_plain_scaled \
+  --quantity observables.barycentric_height.h_cm
+tradeoff: build
+	$(BUILD_DIR)/gran tradeoff studies/bhateja-2016/canonical-3d.yaml --set engine.friction=0.4 \
+	  $(BH3D_W20) -o $(TRADEOFF_OUT)/bhateja-3d-rough
+	$(BUILD_DIR)/gran tradeoff studies/bhateja-2016/canonical-3d.yaml --set engine.friction=0 \
+	  $(BH3D_W20) -o $(TRADEOFF_OUT)/bhateja-3d-smooth
+	$(BUILD_DIR)/gran tradeoff studies/barrat-trizac-2002/vibrated-mixture.yaml \
+	  -o $(TRADEOFF_OUT)/barrat-trizac-table1
+	$(BUILD_DIR)/gran tradeoff studies/demo/binary-thermostat-2d.yaml \
+	  --analytic observables.temperatures.ratios.light_over_heavy.gamma=0.7459 \
+	  -o $(TRADEOFF_OUT)/heated-mixture

@@ -23,6 +23,7 @@
 #include "libgran/scene.hpp"
 #include "libgran/scene_error.hpp"
 #include "libgran/study_fit.hpp"
+#include "libgran/study_tradeoff.hpp"
 
 extern char** environ;
 
@@ -97,6 +98,45 @@ std::vector<std::pair<std::string, std::vector<YAML::Node>>> read_lists(const Wh
         out.emplace_back(key, std::move(values));
     }
     return out;
+}
+
+StudyTradeoff read_tradeoff(const Where& w, const YAML::Node& n) {
+    require_map(w, n, "a trade-off: {reference, quantities, analytic, cost}");
+    StudyTradeoff t;
+    for (auto it = n.begin(); it != n.end(); ++it) {
+        const std::string k = it->first.as<std::string>();
+        const Where wk = w.child(k);
+        const YAML::Node v = it->second;
+        if (k == "reference") {
+            t.reference = require_string(wk, v);
+        } else if (k == "cost") {
+            t.cost = require_string(wk, v);
+        } else if (k == "quantities") {
+            if (!v.IsSequence() || v.size() == 0)
+                fail(wk, v, "expected a non-empty list of summary quantities");
+            for (std::size_t i = 0; i < v.size(); ++i)
+                t.quantities.push_back(require_string(wk.item(i), v[i]));
+        } else if (k == "analytic") {
+            require_map(wk, v, "a map from summary quantity to its exact value");
+            for (auto a = v.begin(); a != v.end(); ++a) {
+                const std::string q = a->first.as<std::string>();
+                double x = 0;
+                try {
+                    x = a->second.as<double>();
+                } catch (const YAML::Exception&) {
+                    fail(wk.child(q), a->second, "expected a number (the exact value)");
+                }
+                if (!std::isfinite(x) || x == 0)
+                    fail(wk.child(q), a->second,
+                         "expected a finite non-zero number (deviations are relative to it)");
+                t.analytic.emplace_back(q, x);
+            }
+        } else {
+            fail(wk, it->first,
+                 "unknown key; a trade-off has reference, quantities, analytic, cost");
+        }
+    }
+    return t;
 }
 
 StudyFit read_fit(const Where& w, const YAML::Node& n) {
@@ -174,6 +214,7 @@ Study load_study(const std::string& path) {
     std::vector<std::pair<std::string, std::vector<YAML::Node>>> grid, zip;
     int replicas = 1;
     YAML::Node zip_node;
+    std::vector<std::pair<std::string, std::string>> base_sets;  // `set`: every run
     for (auto it = root.begin(); it != root.end(); ++it) {
         const std::string k = it->first.as<std::string>();
         const Where w = top.child(k);
@@ -198,9 +239,17 @@ Study load_study(const std::string& path) {
         } else if (k == "fits") {
             if (!v.IsSequence()) fail(w, v, "expected a list of fits");
             for (std::size_t i = 0; i < v.size(); ++i) st.fits.push_back(read_fit(w.item(i), v[i]));
+        } else if (k == "set") {
+            require_map(w, v, "a map from scene key to value (applied to every run)");
+            for (auto s = v.begin(); s != v.end(); ++s)
+                base_sets.emplace_back(s->first.as<std::string>(), yaml_text(s->second));
+        } else if (k == "tradeoff") {
+            st.has_tradeoff = true;
+            st.tradeoff = read_tradeoff(w, v);
         } else {
             fail(w, it->first,
-                 "unknown key; a study has scene, output, jobs, replicas, points, grid, zip, fits");
+                 "unknown key; a study has scene, output, jobs, replicas, set, points, grid, zip, "
+                 "fits, tradeoff");
         }
     }
     if (st.scene.empty()) fail(top, root, "missing required key `scene` (the base scene file)");
@@ -232,7 +281,7 @@ Study load_study(const std::string& path) {
         const YAML::Node& pn = points[p];
         require_map(wp, pn, "a point: {name: ..., set: {scene.key: value, ...}}");
         std::string pname;
-        std::vector<std::pair<std::string, std::string>> sets;
+        std::vector<std::pair<std::string, std::string>> sets = base_sets;
         YAML::Node meta(YAML::NodeType::Map);
         for (auto it = pn.begin(); it != pn.end(); ++it) {
             const std::string k = it->first.as<std::string>();
@@ -281,11 +330,21 @@ Study load_study(const std::string& path) {
                     }
                     if (!names.insert(run.name).second)
                         fail(wp, pn, "two runs are both named '" + run.name + "'; rename a point");
-                    for (const auto& [k, v] : run.overrides) note_key(k);
+                    for (std::size_t o = base_sets.size(); o < run.overrides.size(); ++o)
+                        note_key(run.overrides[o].first);
                     st.runs.push_back(std::move(run));
                 }
             }
         }
+    }
+    if (st.has_tradeoff && st.tradeoff.analytic.empty() &&
+        std::none_of(st.runs.begin(), st.runs.end(),
+                     [&](const StudyRun& r) { return r.point == st.tradeoff.reference; })) {
+        const YAML::Node tn = static_cast<const YAML::Node&>(root)["tradeoff"];
+        const YAML::Node rn = tn["reference"];
+        fail(top.child("tradeoff").child("reference"), rn ? rn : tn,
+             "no point is named '" + st.tradeoff.reference +
+                 "'; the reference must be a point of the study (or give `analytic` values)");
     }
     return st;
 }
@@ -524,7 +583,8 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
     }
 
     // Merge every complete run into one file, plus the summary table and fits.
-    const Table table = summary_table(st, summary, have);
+    Table table = summary_table(st, summary, have);
+    if (st.has_tradeoff) add_pdf_distances(st, out, table.rows, have, table.quantities);
     // Named after the study file: several studies may share one result folder (and its runs).
     const std::string stem = fs::path(st.file).stem().string();
     rep.table = (fs::path(outdir) / (stem + ".study.csv")).string();
@@ -532,6 +592,8 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
     const std::vector<FitResult> fits = fit_all(
         st, table.quantities, table.rows, have,
         [&](const StudyFit& f, std::size_t i) { return fit_x(f, st.runs[i], table.rows[i]); });
+    TradeoffResult tradeoff;
+    if (st.has_tradeoff) tradeoff = analyse_tradeoff(st, table.quantities, table.rows, have);
     rep.merged = (fs::path(outdir) / (stem + ".study.h5")).string();
     const std::string part = rep.merged + ".part";
     {
@@ -580,6 +642,7 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
             qg.write("error", e);
         }
         write_fits(root, fits);
+        if (st.has_tradeoff) write_tradeoff(root, tradeoff);
         h5::Group perf = root.group("performance");
         perf.write_scalar("ran", rep.ran);
         perf.write_scalar("reused", rep.reused);
@@ -589,6 +652,16 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
         perf.attr_on("wall_time", "unit", "s");
     }
     fs::rename(part, rep.merged);
+    if (st.has_tradeoff) {
+        write_tradeoff_csv((fs::path(outdir) / (stem + ".tradeoff.csv")).string(), tradeoff);
+        rep.tradeoff = (fs::path(outdir) / (stem + ".tradeoff.md")).string();
+        std::ofstream md(rep.tradeoff);
+        md << "# Speed versus accuracy: " << st.file << "\n\n"
+           << "Deviation of each quantity from its reference, relative, with one standard error; "
+              "`*`: on the Pareto front of (CPU time, |deviation| + error) for that quantity; "
+              "`worst`: the largest |deviation| + error over the quantities, and its front.\n\n"
+           << tradeoff_table(tradeoff);
+    }
     if (!fits.empty()) {
         const std::string fits_csv = (fs::path(outdir) / (stem + ".fits.csv")).string();
         write_fits_csv(fits_csv, fits);

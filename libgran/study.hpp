@@ -34,6 +34,16 @@ struct StudyFit {
     double tolerance = 0.25;
 };
 
+// A speed-versus-accuracy analysis over the runs (docs/studies.md, "Trade-off"): every run is one
+// fidelity setting; each chosen quantity is compared with a reference (an analytic value, else the
+// run named `reference`, the most accurate setting) against the run's CPU time.
+struct StudyTradeoff {
+    std::string reference = "reference";  // the point whose runs are the reference
+    std::vector<std::string> quantities;  // summary quantities; empty: the default patterns
+    std::vector<std::pair<std::string, double>> analytic;  // quantity -> exact value
+    std::string cost = "performance.cpu_time_s";
+};
+
 struct Study {
     std::string file;                     // the study file
     std::string scene;                    // base scene path (resolved relative to the study file)
@@ -42,6 +52,8 @@ struct Study {
     std::vector<std::string> swept_keys;  // every key some run overrides, in first-seen order
     std::vector<StudyRun> runs;
     std::vector<StudyFit> fits;
+    bool has_tradeoff = false;
+    StudyTradeoff tradeoff;
     std::string text;  // the study file as written, stored in the merged result
 };
 
@@ -65,6 +77,7 @@ struct StudyReport {
     std::string merged;      // OUTDIR/<study stem>.study.h5
     std::string table;       // OUTDIR/<study stem>.study.csv
     int max_concurrent = 0;  // largest number of runs in flight at once
+    std::string tradeoff;    // OUTDIR/<study stem>.tradeoff.md when the study has `tradeoff`
 };
 
 StudyReport run_study(const Study& study, const StudyOptions& options);

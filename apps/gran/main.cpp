@@ -7,12 +7,15 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "drivers/driver.hpp"
 #include "libgran/run.hpp"
 #include "libgran/scene.hpp"
 #include "libgran/study.hpp"
+#include "libgran/tradeoff_ladder.hpp"
 #include "observables/observable.hpp"
 #include "species/pair_law.hpp"
 
@@ -99,6 +102,23 @@ void print_headline(const YAML::Node& summary) {
     }
 }
 
+// The PNG of error versus cost (studies/plot_tradeoff.py, Debian's python3 with matplotlib).
+void plot_tradeoff(const gran::StudyReport& rep) {
+    const std::filesystem::path script =
+        std::filesystem::path(GRAN_SOURCE_DIR) / "studies" / "plot_tradeoff.py";
+    const std::string png = rep.merged.substr(0, rep.merged.size() - 9) + ".tradeoff.png";
+    if (!std::filesystem::exists(script) || !std::filesystem::exists("/usr/bin/python3")) {
+        spdlog::warn("no plot: {} or /usr/bin/python3 is missing", script.string());
+        return;
+    }
+    const std::string cmd =
+        fmt::format("/usr/bin/python3 '{}' '{}' -o '{}'", script.string(), rep.merged, png);
+    if (std::system(cmd.c_str()) == 0)
+        std::cout << "plot: " << png << "\n";
+    else
+        spdlog::warn("the trade-off plot failed: {}", cmd);
+}
+
 int cmd_study(const std::string& file, const std::string& out, int jobs, bool quiet) {
     try {
         const gran::Study st = gran::load_study(file);
@@ -120,6 +140,11 @@ int cmd_study(const std::string& file, const std::string& out, int jobs, bool qu
             "{} ran, {} reused, {} failed{}; at most {} at a time\nresult: {}\ntable: {}\n",
             rep.ran, rep.reused, rep.failed, rep.interrupted ? " (interrupted)" : "",
             rep.max_concurrent, rep.merged, rep.table);
+        if (!rep.tradeoff.empty()) {
+            std::ifstream md(rep.tradeoff);
+            std::cout << md.rdbuf() << "table: " << rep.tradeoff << "\n";
+            plot_tradeoff(rep);
+        }
         if (rep.interrupted) return 3;
         return rep.failed > 0 ? 1 : 0;
     } catch (const gran::SceneError& e) {
@@ -165,6 +190,32 @@ int main(int argc, char** argv) {
     study->add_option("-j,--jobs", jobs,
                       "runs at a time (default: the study's `jobs`, else all cores)");
 
+    auto* tradeoff = app.add_subcommand(
+        "tradeoff",
+        "run a scene at a ladder of fidelity settings and report error versus cost "
+        "(docs/studies.md)");
+    gran::TradeoffRequest treq;
+    std::string tout;
+    bool dry_run = false;
+    std::vector<std::string> knob_ladders, analytic;
+    tradeoff->add_option("scene", treq.scene, "scene file (YAML)")->required();
+    tradeoff->add_option("--set", treq.sets, "override a base scene key (repeatable)");
+    tradeoff
+        ->add_option("--knobs", treq.knobs,
+                     "automatic knobs to use: dt_over_tc, stiffness, engine, kick_interval, "
+                     "N, measurement (default: all that apply)")
+        ->delimiter(',');
+    tradeoff->add_option("--knob", knob_ladders,
+                         "a ladder of any scene key, cheapest first: KEY=v1,v2,... (repeatable)");
+    tradeoff->add_option("--quantity", treq.quantities,
+                         "summary quantity to compare (repeatable; default: the headline ones)");
+    tradeoff->add_option("--analytic", analytic,
+                         "exact value of a quantity, the reference for it: QUANTITY=value");
+    tradeoff->add_option("-o,--output", tout, "result folder (default results/tradeoff-<scene>)");
+    tradeoff->add_option("-j,--jobs", jobs, "runs at a time (default: all cores)");
+    tradeoff->add_flag("--dry-run", dry_run, "write and print the study file, run nothing");
+    tradeoff->fallthrough();
+
     run->fallthrough();
     check->fallthrough();
     study->fallthrough();
@@ -180,6 +231,50 @@ int main(int argc, char** argv) {
     if (list->parsed()) return cmd_list(what);
 
     if (study->parsed()) return cmd_study(study_file, study_out, jobs, quiet);
+
+    if (tradeoff->parsed()) {
+        try {
+            for (const auto& k : knob_ladders) {
+                const auto eq = k.find('=');
+                if (eq == std::string::npos || eq + 1 >= k.size())
+                    throw gran::SceneError("--knob expects KEY=v1,v2,..., got '" + k + "'");
+                std::vector<std::string> levels;
+                std::stringstream ss(k.substr(eq + 1));
+                for (std::string v; std::getline(ss, v, ',');) levels.push_back(v);
+                treq.custom.emplace_back(k.substr(0, eq), levels);
+            }
+            for (const auto& a : analytic) {
+                const auto eq = a.find('=');
+                double v = 0;
+                try {
+                    v = std::stod(a.substr(eq + 1));
+                } catch (const std::exception&) {
+                    throw gran::SceneError("--analytic expects QUANTITY=number, got '" + a + "'");
+                }
+                treq.analytic.emplace_back(a.substr(0, eq), v);
+            }
+            if (tout.empty())
+                tout = "results/tradeoff-" + std::filesystem::path(treq.scene).stem().string();
+            std::filesystem::create_directories(tout);
+            const std::string file = (std::filesystem::path(tout) /
+                                      (std::filesystem::path(treq.scene).stem().string() + ".yaml"))
+                                         .string();
+            std::ofstream(file) << gran::tradeoff_study_text(treq, tout);
+            std::cout << "study: " << file << "\n";
+            if (dry_run) {
+                std::ifstream in(file);
+                std::cout << in.rdbuf();
+                return 0;
+            }
+        } catch (const gran::SceneError& e) {
+            std::cerr << "gran: error: " << e.what() << "\n";
+            return 2;
+        }
+        return cmd_study((std::filesystem::path(tout) /
+                          (std::filesystem::path(treq.scene).stem().string() + ".yaml"))
+                             .string(),
+                         tout, jobs, quiet);
+    }
 
     try {
         gran::Scene scene = gran::load_scene(scene_file, sets);
