@@ -91,7 +91,8 @@ clean:
 	rm -rf $(BUILD_DIR) build-asan
 
 # Speed versus accuracy (issue #6, docs/choosing-speed-or-accuracy.md): `gran tradeoff` on the
-# Bhateja 3D rough bed and its frictionless twin (W = 20), the Barrat & Trizac Table I vibrated
+# Bhateja 3D rough bed and its frictionless twin (W = 20), the frictionless bed on a grid of k_n and
+# dt/t_c against the event-driven engine, the Barrat & Trizac Table I vibrated
 # mixture and the heated mixture (analytic reference: the Maxwellian theory). About 15 CPU minutes;
 # completed runs are reused. Writes results/tradeoff/<case>/<scene>.{tradeoff.md,tradeoff.csv,
 # tradeoff.png,study.h5}.
@@ -105,6 +106,7 @@ tradeoff: build
 	  $(BH3D_W20) -o $(TRADEOFF_OUT)/bhateja-3d-rough
 	$(BUILD_DIR)/gran tradeoff studies/bhateja-2016/canonical-3d.yaml --set engine.friction=0 \
 	  $(BH3D_W20) -o $(TRADEOFF_OUT)/bhateja-3d-smooth
+	$(BUILD_DIR)/gran study studies/tradeoff/dem-convergence-3d.yaml -o $(TRADEOFF_OUT)/dem-convergence-3d
 	$(BUILD_DIR)/gran tradeoff studies/barrat-trizac-2002/vibrated-mixture.yaml \
 	  -o $(TRADEOFF_OUT)/barrat-trizac-table1
 	$(BUILD_DIR)/gran tradeoff studies/demo/binary-thermostat-2d.yaml \

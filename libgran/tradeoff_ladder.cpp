@@ -306,13 +306,11 @@ std::string tradeoff_study_text(const TradeoffRequest& rq, const std::string& ou
     }
     std::vector<std::pair<std::string, std::string>> reference;
     std::vector<std::string> reference_label;
-    std::vector<const Knob*> raised;  // knobs whose most accurate level is not the scene's
     for (const auto& k : knobs) {
         const auto& best = k.levels.back();
         if (int(k.levels.size()) - 1 != k.base) {
             reference.insert(reference.end(), best.set.begin(), best.set.end());
             reference_label.push_back(k.name + "=" + best.label);
-            raised.push_back(&k);
         }
     }
     // On the event-driven engine the DEM knobs mean nothing: the reference is the hard limit.
@@ -353,11 +351,21 @@ std::string tradeoff_study_text(const TradeoffRequest& rq, const std::string& ou
     };
     point("base", "base", "scene", {});
     std::set<std::string> names{"base", "reference"};
+    auto sorted = [](std::vector<std::pair<std::string, std::string>> v) {
+        std::sort(v.begin(), v.end());
+        return v;
+    };
+    const auto reference_sorted = sorted(reference);
+    std::string reference_knob = "reference";
     for (const auto& k : knobs) {
         for (int l = 0; l < int(k.levels.size()); ++l) {
             if (l == k.base) continue;
-            // With a single raised knob its best level is the reference itself: run it once.
-            if (raised.size() == 1 && raised[0] == &k && l + 1 == int(k.levels.size())) continue;
+            // A level that is the reference itself (a single raised knob, or the event-driven
+            // limit) runs once, as the reference.
+            if (!reference.empty() && sorted(k.levels[std::size_t(l)].set) == reference_sorted) {
+                reference_knob = k.name;
+                continue;
+            }
             std::string name = k.name + "_" + k.levels[std::size_t(l)].label;
             for (char& c : name) {
                 if (c == '/') c = '_';
@@ -369,7 +377,7 @@ std::string tradeoff_study_text(const TradeoffRequest& rq, const std::string& ou
     if (!reference.empty()) {
         std::string label;
         for (const auto& l : reference_label) label += (label.empty() ? "" : " ") + l;
-        point("reference", raised.size() == 1 ? raised[0]->name : "reference", label, reference);
+        point("reference", reference_knob, label, reference);
     }
     em << YAML::EndSeq << YAML::EndMap;
     std::string text = em.c_str();

@@ -78,7 +78,7 @@ def panel(ax, t, acc, pareto, title):
         ax.scatter(cost[sel], 100 * y[sel], color=colours[k], label=k, s=28, zorder=3)
     ref = np.asarray(t["reference"], bool)
     ax.scatter(cost[ref], 100 * y[ref], facecolors="none", edgecolors="k", s=110, zorder=4,
-               label="reference")
+               label="reference run")
     front = np.where(np.asarray(pareto, bool) & np.isfinite(cost) & np.isfinite(y))[0]
     front = front[np.argsort(cost[front])]
     if len(front):
@@ -86,7 +86,8 @@ def panel(ax, t, acc, pareto, title):
                 label="Pareto front")
     for i in range(len(cost)):
         if math.isfinite(cost[i]) and math.isfinite(y[i]):
-            ax.annotate(t["levels"][i], (cost[i], 100 * y[i]), fontsize=6, xytext=(3, 2),
+            text = "reference" if ref[i] else t["levels"][i]
+            ax.annotate(text, (cost[i], 100 * y[i]), fontsize=6, xytext=(3, 2),
                         textcoords="offset points")
     ax.set_xscale("log")
     ax.set_yscale("log")
