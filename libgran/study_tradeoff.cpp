@@ -250,6 +250,8 @@ TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>&
         r.reference = st.runs[i].point == spec.reference;
         auto c = rows[i].find(spec.cost);
         r.cost = c == rows[i].end() ? std::nan("") : c->second.first;
+        auto w = rows[i].find("performance.wall_time_s");
+        r.wall = w == rows[i].end() ? std::nan("") : w->second.first;
         r.worst = 0;
         for (std::size_t q = 0; q < nq; ++q) {
             TradeoffCell cell;
@@ -301,7 +303,7 @@ TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>&
 void write_tradeoff(h5::Group& root, const TradeoffResult& t) {
     h5::Group g = root.group("tradeoff");
     std::vector<std::string> runs, points, knobs, levels;
-    std::vector<double> cost, worst;
+    std::vector<double> cost, wall, worst;
     std::vector<std::int64_t> pareto, reference;
     for (const auto& r : t.rows) {
         runs.push_back(r.run);
@@ -309,6 +311,7 @@ void write_tradeoff(h5::Group& root, const TradeoffResult& t) {
         knobs.push_back(r.knob);
         levels.push_back(r.level);
         cost.push_back(r.cost);
+        wall.push_back(r.wall);
         worst.push_back(r.worst);
         pareto.push_back(r.pareto);
         reference.push_back(r.reference);
@@ -319,6 +322,8 @@ void write_tradeoff(h5::Group& root, const TradeoffResult& t) {
     g.write_strings("levels", levels);
     g.write("cost", cost);
     g.attr_on("cost", "unit", "s");
+    g.write("wall_time", wall);
+    g.attr_on("wall_time", "unit", "s");
     g.write("worst_accuracy", worst);
     g.write("pareto", pareto);
     g.write("reference", reference);
@@ -353,7 +358,7 @@ void write_tradeoff(h5::Group& root, const TradeoffResult& t) {
 
 void write_tradeoff_csv(const std::string& path, const TradeoffResult& t) {
     std::ofstream o(path);
-    o << "run,point,knob,level,cost_s,reference_run,worst_accuracy,pareto";
+    o << "run,point,knob,level,cost_s,wall_time_s,reference_run,worst_accuracy,pareto";
     for (const auto& q : t.quantities) {
         for (const char* c : {"value", "error", "deviation", "deviation_error", "pareto"})
             o << "," << q << "." << c;
@@ -379,10 +384,10 @@ std::string tradeoff_table(const TradeoffResult& t) {
                          t.rows.empty() ? std::nan("") : t.rows[0].cells[q].reference,
                          t.rows.empty() ? std::nan("") : t.rows[0].cells[q].reference_error);
     }
-    s += "\n| run | knob | level | CPU s |";
+    s += "\n| run | knob | level | CPU s | wall s |";
     for (std::size_t q = 0; q < t.quantities.size(); ++q)
         s += fmt::format(" q{} deviation |", q + 1);
-    s += " worst | front |\n|---|---|---|---:|";
+    s += " worst | front |\n|---|---|---|---:|---:|";
     for (std::size_t q = 0; q < t.quantities.size(); ++q) s += "---:|";
     s += "---:|:-:|\n";
     // Cheapest first: the table reads as a ladder of cost.
@@ -392,8 +397,9 @@ std::string tradeoff_table(const TradeoffResult& t) {
                      [&](std::size_t a, std::size_t b) { return t.rows[a].cost < t.rows[b].cost; });
     for (std::size_t k : order) {
         const auto& r = t.rows[k];
-        s += fmt::format("| {}{} | {} | {} | {:.3g} |", r.run, r.reference ? " (ref)" : "",
-                         r.knob.empty() ? "-" : r.knob, r.level.empty() ? "-" : r.level, r.cost);
+        s += fmt::format("| {}{} | {} | {} | {:.3g} | {:.3g} |", r.run,
+                         r.reference ? " (ref)" : "", r.knob.empty() ? "-" : r.knob,
+                         r.level.empty() ? "-" : r.level, r.cost, r.wall);
         for (const auto& c : r.cells) {
             if (std::isnan(c.deviation))
                 s += " - |";

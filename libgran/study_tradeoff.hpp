@@ -37,6 +37,7 @@ struct TradeoffCell {
 struct TradeoffRow {
     std::string run, point, knob, level;
     double cost = 0;                  // the study's cost quantity (CPU seconds by default)
+    double wall = 0;                  // the run's wall-clock seconds
     std::vector<TradeoffCell> cells;  // one per quantity
     double worst = 0;                 // largest accuracy over the quantities
     bool pareto = false;              // on the front of (cost, worst)
