@@ -46,7 +46,12 @@ EquilibrationCheck check_equilibration(std::span<const double> series) {
     if (c.samples == 0) return c;
     c.truncation = mser_truncation(series);
     c.truncation_fraction = double(c.truncation) / double(c.samples);
-    c.relaxing = c.truncation_fraction > kRelaxingFraction;
+    const Estimate all = block_average(series);
+    const Estimate kept = block_average(series.subspan(c.truncation));
+    c.shift_z = kept.error > 0 ? (all.value - kept.value) / kept.error : 0.0;
+    c.n_eff = kept.n_eff;
+    c.conclusive = kept.converged && kept.n_eff >= kMinEffectiveSamplesForCheck;
+    c.relaxing = c.conclusive && std::abs(c.shift_z) > kRelaxingShift;
     const std::size_t half = c.samples / 2;
     // The error of the difference from the second half alone, sqrt(2) times its blocking error:
     // in a stationary series both halves have the same error, and a transient in the first half
@@ -64,19 +69,27 @@ void report_equilibration(const EquilibrationCheck& check, const Schedule& sched
                           YAML::Node& performance_summary) {
     h5::Group g = performance.group("equilibration");
     g.attr("criterion",
-           "MSER-5 truncation (White 1997) of the kinetic energy per particle at the measurement "
-           "samples; relaxing if above " +
-               fmt::format("{:g}", kRelaxingFraction) +
-               " of the samples. drift_z: (mean of 2nd half - mean of 1st half) / error");
+           fmt::format("MSER-5 truncation (White 1997) of the kinetic energy per particle at the "
+                       "measurement samples; shift_z = (mean of all - mean after the truncation) "
+                       "/ its error; relaxing if |shift_z| > {:g} with at least {:g} effective "
+                       "samples (conclusive); drift_z = (mean of 2nd half - mean of 1st half) / "
+                       "error",
+                       kRelaxingShift, kMinEffectiveSamplesForCheck));
     g.write_scalar("samples", static_cast<std::int64_t>(check.samples));
     g.write_scalar("truncation_samples", static_cast<std::int64_t>(check.truncation));
     g.write_scalar("truncation_fraction", check.truncation_fraction);
     g.write_scalar("drift_z", check.drift_z);
+    g.write_scalar("shift_z", check.shift_z);
+    g.write_scalar("n_eff", check.n_eff);
+    g.write_scalar("conclusive", static_cast<std::int64_t>(check.conclusive ? 1 : 0));
     g.write_scalar("relaxing", static_cast<std::int64_t>(check.relaxing ? 1 : 0));
     YAML::Node y;
     y["truncation_samples"] = check.truncation;
     y["truncation_fraction"] = check.truncation_fraction;
     y["drift_z"] = check.drift_z;
+    y["shift_z"] = check.shift_z;
+    y["n_eff"] = std::isfinite(check.n_eff) ? std::round(check.n_eff) : check.n_eff;
+    y["conclusive"] = check.conclusive;
     y["relaxing"] = check.relaxing;
     if (check.relaxing && steady_state_expected) {
         const double at_least =
@@ -85,9 +98,10 @@ void report_equilibration(const EquilibrationCheck& check, const Schedule& sched
             schedule.unit == ScheduleUnit::Time ? "time units" : "collisions per particle";
         const std::string warning = fmt::format(
             "the kinetic energy was still relaxing during the first {:.0f}% of the measurement "
-            "(MSER-5 truncation at sample {} of {}): lengthen run.equilibration to at least {:.3g} "
-            "{}",
-            100 * check.truncation_fraction, check.truncation, check.samples, at_least, unit);
+            "(MSER-5 truncation at sample {} of {}, which moves its mean by {:.1f} standard "
+            "errors): lengthen run.equilibration to at least {:.3g} {}",
+            100 * check.truncation_fraction, check.truncation, check.samples, check.shift_z,
+            at_least, unit);
         spdlog::warn("{}", warning);
         g.attr("warning", warning);
         y["warning"] = warning;
