@@ -42,6 +42,17 @@ class EngineView {
         for (auto h : wall_hits()) s += h;
         return s;
     }
+    // Total kinetic energy (translational + rotational) per particle at now(), in the lab frame.
+    double kinetic_energy_per_particle(const SpeciesTable& table) const {
+        const auto& p = particles();
+        double e = 0;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            const std::uint32_t s = p.species[i];
+            e += 0.5 * table.species[s].mass * p.v[i].squaredNorm();
+            if (p.rotating()) e += 0.5 * species_inertia(s) * ang_squared<D>(p.w[i]);
+        }
+        return e / double(p.size());
+    }
     // Surface position of a wall at time t (index 2 * axis + side), e.g. a vibrating base.
     virtual double wall_position(int code, double t) const = 0;
     // Mean surface position of a wall over one period of its motion from t (period <= 0: at t),

@@ -376,6 +376,12 @@ void Group::attr_on(const std::string& object, const std::string& name, double v
     write_attr(obj.get(), name, H5T_NATIVE_DOUBLE, {}, &v, w);
 }
 
+void Group::attr_on(const std::string& object, const std::string& name, std::int64_t v) {
+    const std::string w = where(object, name);
+    const Handle obj = own(H5Oopen(id_.get(), object.c_str(), H5P_DEFAULT), "open object for", w);
+    write_attr(obj.get(), name, H5T_NATIVE_INT64, {}, &v, w);
+}
+
 void Group::attr_on(const std::string& object, const std::string& name, const std::string& v) {
     const std::string w = where(object, name);
     const Handle obj = own(H5Oopen(id_.get(), object.c_str(), H5P_DEFAULT), "open object for", w);

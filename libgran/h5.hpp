@@ -113,6 +113,7 @@ class Group {
 
     // Attributes on a dataset or subgroup of this group.
     void attr_on(const std::string& object, const std::string& name, double v);
+    void attr_on(const std::string& object, const std::string& name, std::int64_t v);
     void attr_on(const std::string& object, const std::string& name, const std::string& v);
 
     // Reading (for tests and resume). Numeric reads convert from the stored type.

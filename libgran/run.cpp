@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include "drivers/driver.hpp"
 #include "libgran/dem_probe.hpp"
 #include "libgran/engine_view.hpp"
+#include "libgran/equilibration.hpp"
 #include "libgran/h5.hpp"
 #include "libgran/placement.hpp"
 #include "observables/observable.hpp"
@@ -408,6 +410,8 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
     bool interrupted = false;
     bool stalled = false;
     std::size_t samples_taken = 0;
+    std::vector<double> measured_energy;  // per measurement sample, for the warm-up check
+    measured_energy.reserve(expected_samples);
     double t_measure_start = 0;
     std::uint64_t coll_measure_start = 0;
 
@@ -436,6 +440,7 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
             for (auto& o : observables) o->sample(ctx);
             if (measuring) {
                 ++samples_taken;
+                measured_energy.push_back(view.kinetic_energy_per_particle(sc.species));
                 if (frame_every && samples_taken % frame_every == 0 &&
                     frame_time.size() < sc.frames) {
                     frame_time.push_back(runner.now());
@@ -532,6 +537,10 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
         perf.write_scalar("samples", static_cast<std::int64_t>(samples_taken));
         perf.write_scalar("completed", static_cast<std::int64_t>(rep.completed ? 1 : 0));
         perf.write_scalar("interrupted", static_cast<std::int64_t>(interrupted ? 1 : 0));
+        // Free cooling (no driver injecting energy) is not meant to be stationary.
+        const bool driven = std::any_of(sc.drivers.begin(), sc.drivers.end(),
+                                        [](const auto& d) { return d.type != "none"; });
+        report_equilibration(check_equilibration(measured_energy), s, driven, perf, ps);
 
         if (!frame_time.empty()) {
             h5::Group pg = root.group("particles/all");

@@ -40,6 +40,16 @@ Moments moments(std::span<const double> x) {
     return {mean, sq / n};
 }
 
+// tau_int and n_eff from the error and the error the same estimate would have with independent
+// samples: error^2 = 2 tau_int naive^2 (see Estimate). Undefined (NaN) when there is no
+// fluctuation at all (naive error 0: a constant series) or no error.
+void set_correlation(Estimate& e, double naive_error) {
+    if (!(naive_error > 0) || !std::isfinite(e.error)) return;
+    const double ratio = e.error / naive_error;
+    e.tau_int = 0.5 * ratio * ratio;
+    e.n_eff = static_cast<double>(e.samples) / (2 * e.tau_int);
+}
+
 struct BlockingLevel {
     std::size_t n_blocks;
     double error;        // sqrt(c0 / (n - 1)), c0 the population variance at this level
@@ -58,6 +68,7 @@ struct Blocking {
 // constant within its own statistical uncertainty.
 Blocking blocking(std::span<const double> series) {
     Blocking result{{moments(series).mean, kNaN}, 0, false};
+    result.estimate.samples = series.size();
     if (series.size() < kMinSamplesForError) return result;
 
     std::vector<BlockingLevel> levels;
@@ -86,6 +97,7 @@ Blocking blocking(std::span<const double> series) {
             result.estimate.error = levels[i].error;
             result.level = i;
             result.plateau = true;
+            set_correlation(result.estimate, levels[0].error);
             return result;
         }
     }
@@ -100,7 +112,56 @@ Blocking blocking(std::span<const double> series) {
             result.level = i;
         }
     }
+    result.estimate.converged = false;
+    set_correlation(result.estimate, levels[0].error);
     return result;
+}
+
+// Jackknife standard error of f(means) over n_blocks equal blocks (see jackknife()).
+double jackknife_error(const std::vector<std::span<const double>>& series,
+                       const std::function<double(std::span<const double>)>& f,
+                       std::size_t n_blocks) {
+    const std::size_t k = series.size();
+    // Leave-one-block-out means from the block sums: O(k * n_blocks) instead of O(k * n) per
+    // replica. All blocks have equal length, so means of block means are sample means.
+    std::vector<std::vector<double>> blocks(k);
+    std::vector<double> totals(k, 0.0);
+    for (std::size_t j = 0; j < k; ++j) {
+        blocks[j] = block_means(series[j], n_blocks);
+        for (double m : blocks[j]) totals[j] += m;
+    }
+    const double nb = static_cast<double>(n_blocks);
+    std::vector<double> replicas(n_blocks);
+    std::vector<double> reduced(k);
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+        for (std::size_t j = 0; j < k; ++j) reduced[j] = (totals[j] - blocks[j][b]) / (nb - 1);
+        replicas[b] = f(reduced);
+    }
+
+    // Jackknife variance (Efron & Stein): (N-1)/N * sum_b (f_b - mean f)^2, the (N-1) undoing the
+    // shrinking of the replica spread by leaving out only one block of N.
+    const double spread = moments(replicas).variance;  // (1/N) sum_b (f_b - mean f)^2
+    return std::sqrt((nb - 1) * spread);
+}
+
+// Jackknife pseudo-values y_t = f + (n - 1) (f - f_(t)) of the leave-one-sample-out replicas
+// f_(t) = f(means without sample t): to first order y_t = f + grad f . (x_t - means), the series
+// whose mean's error is the error of f (delta method). The reduced means are computed as
+// m - (x_t - m) / (n - 1), which does not cancel for large n. O(k n) plus n evaluations of f.
+std::vector<double> pseudo_values(const std::vector<std::span<const double>>& series,
+                                  const std::function<double(std::span<const double>)>& f,
+                                  std::span<const double> means, double full) {
+    const std::size_t n = series.front().size();
+    const double n_minus_1 = static_cast<double>(n - 1);
+    std::vector<double> reduced(series.size());
+    std::vector<double> y(n);
+    for (std::size_t t = 0; t < n; ++t) {
+        for (std::size_t j = 0; j < series.size(); ++j) {
+            reduced[j] = means[j] - (series[j][t] - means[j]) / n_minus_1;
+        }
+        y[t] = full + n_minus_1 * (full - f(reduced));
+    }
+    return y;
 }
 
 }  // namespace
@@ -125,15 +186,22 @@ std::vector<double> block_means(std::span<const double> series, std::size_t n_bl
     return means;
 }
 
-std::size_t suggested_blocks(std::span<const double> series) {
-    const std::size_t n = series.size();
+namespace {
+
+// suggested_blocks() from the blocking analysis of a series of n samples.
+std::size_t blocks_for(const Blocking& b, std::size_t n) {
     if (n < kMinSamplesForError) return n;
-    const Blocking b = blocking(series);
     // Without a plateau the decorrelation length is longer than any level could show, so even the
     // longest blocks tried are correlated: use as few (long) blocks as the jackknife tolerates.
     if (!b.plateau) return std::min(kMinJackknifeBlocks, n);
     const std::size_t block_length = std::size_t{1} << b.level;
     return std::min(std::clamp(n / block_length, kMinJackknifeBlocks, kMaxJackknifeBlocks), n);
+}
+
+}  // namespace
+
+std::size_t suggested_blocks(std::span<const double> series) {
+    return blocks_for(blocking(series), series.size());
 }
 
 Estimate jackknife(const std::vector<std::span<const double>>& series,
@@ -151,37 +219,28 @@ Estimate jackknife(const std::vector<std::span<const double>>& series,
     std::vector<double> means(k);
     for (std::size_t j = 0; j < k; ++j) means[j] = n == 0 ? kNaN : moments(series[j]).mean;
     Estimate result{f(means), kNaN};
+    result.samples = n;
     if (n < kMinSamplesForError) return result;
 
+    // The fluctuations of f(means) follow, to first order, the pseudo-value series: its blocking
+    // analysis gives the decorrelation length of f itself (e.g. for T_1/T_2 the common slow
+    // fluctuation of both temperatures cancels) and its level-0 error is the uncorrelated error.
+    const std::vector<double> y = pseudo_values(series, f, means, result.value);
+    const double naive_error = std::sqrt(moments(y).variance / static_cast<double>(n - 1));
     if (n_blocks == 0) {
-        n_blocks = n;
-        for (const auto& s : series) n_blocks = std::min(n_blocks, suggested_blocks(s));
+        const Blocking b = blocking(y);
+        n_blocks = blocks_for(b, n);
+        result.converged = b.plateau;
     } else if (n_blocks < 2 || n_blocks > n) {
         throw std::invalid_argument("jackknife: need 2 <= n_blocks <= series length, got " +
                                     std::to_string(n_blocks) + " blocks for " + std::to_string(n) +
                                     " samples");
     }
 
-    // Leave-one-block-out means from the block sums: O(k * n_blocks) instead of O(k * n) per
-    // replica. All blocks have equal length, so means of block means are sample means.
-    std::vector<std::vector<double>> blocks(k);
-    std::vector<double> totals(k, 0.0);
-    for (std::size_t j = 0; j < k; ++j) {
-        blocks[j] = block_means(series[j], n_blocks);
-        for (double m : blocks[j]) totals[j] += m;
-    }
-    const double nb = static_cast<double>(n_blocks);
-    std::vector<double> replicas(n_blocks);
-    std::vector<double> reduced(k);
-    for (std::size_t b = 0; b < n_blocks; ++b) {
-        for (std::size_t j = 0; j < k; ++j) reduced[j] = (totals[j] - blocks[j][b]) / (nb - 1);
-        replicas[b] = f(reduced);
-    }
-
-    // Jackknife variance (Efron & Stein): (N-1)/N * sum_b (f_b - mean f)^2, the (N-1) undoing the
-    // shrinking of the replica spread by leaving out only one block of N.
-    const double spread = moments(replicas).variance;  // (1/N) sum_b (f_b - mean f)^2
-    result.error = std::sqrt((nb - 1) * spread);
+    result.error = n_blocks == n ? naive_error : jackknife_error(series, f, n_blocks);
+    // The jackknife with one sample per block treats every sample as independent: the ratio of
+    // the two errors measures the correlation, as in blocking.
+    set_correlation(result, naive_error);
     return result;
 }
 

@@ -11,16 +11,41 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <span>
 #include <vector>
 
 namespace gran {
 
-// A value with one standard error. `error` is NaN when it cannot be estimated (fewer than
-// kMinSamplesForError samples).
+// A value with one standard error and what the error rests on. `error` is NaN when it cannot be
+// estimated (fewer than kMinSamplesForError samples).
+//
+// tau_int is the integrated autocorrelation time in samples, with the convention
+// tau_int = 1/2 + sum_{k>=1} rho_k (Sokal 1997; Madras & Sokal 1988), so that
+// error^2 = 2 tau_int sigma^2 / n: independent samples have tau_int = 1/2. It is inferred from the
+// error itself, tau_int = (error / naive error)^2 / 2, the naive error being sigma/sqrt(n-1) of
+// the same quantity with every sample treated as independent. n_eff = n / (2 tau_int) is the
+// number of effectively independent samples: the error is that of n_eff independent ones.
+// Both are NaN when unknown: too few samples, a constant series (error exactly 0, no fluctuation to
+// correlate), or an estimate built from fixed blocks whose samples were never seen (profiles).
+// converged is false when the blocking analysis found no plateau: the blocks never became
+// independent, so error, tau_int are lower bounds and n_eff an upper bound (lengthen the run).
 struct Estimate {
     double value = 0;
     double error = 0;
+    double tau_int = std::numeric_limits<double>::quiet_NaN();
+    double n_eff = std::numeric_limits<double>::quiet_NaN();
+    std::size_t samples = 0;
+    bool converged = true;
+
+    // The same estimate of a*value + b: error scales with |a|; tau_int, n_eff, samples, converged
+    // are unchanged (a linear map does not change correlations).
+    Estimate affine(double a, double b = 0) const {
+        Estimate e = *this;
+        e.value = a * value + b;
+        e.error = (a < 0 ? -a : a) * error;
+        return e;
+    }
 };
 
 // Below this many samples no error is reported: a blocking analysis needs a few levels to see a
@@ -38,7 +63,8 @@ inline constexpr std::size_t kMinSamplesForError = 8;
 // any plateau criterion this is biased low when the series is short compared with tau_int: by a
 // few per cent at n ~ 2000 tau_int, ~10% at 400 tau_int, ~15-20% at 100 tau_int (AR(1) tests).
 // The value is the plain mean of all samples.
-// Fewer than 8 samples: error NaN. A constant series has error exactly 0.
+// tau_int = (error / error of level 0)^2 / 2, n_eff = n / (2 tau_int), converged = plateau found.
+// Fewer than 8 samples: error NaN. A constant series has error exactly 0 (tau_int, n_eff NaN).
 Estimate block_average(std::span<const double> series);
 
 // Splits the series into n_blocks contiguous blocks of equal length and returns the block means.
@@ -57,11 +83,17 @@ std::size_t suggested_blocks(std::span<const double> series);
 
 // Jackknife estimate of f(mean(a_1), ..., mean(a_k)) from k equally long series (e.g. T2 and T1
 // samples for the ratio T2/T1, or <v^2>, <v^4> for a kurtosis). f receives the k means in the
-// order of `series`. The series are cut into n_blocks blocks with block_means (0 = the minimum of
-// suggested_blocks over all series); the leave-one-block-out means keep the correlation between
-// the series and, with decorrelated blocks, the correlation in time.
+// order of `series`. The series are cut into n_blocks blocks with block_means (0 = suggested_blocks
+// of the jackknife pseudo-values y_t = f + (n-1)(f - f_(t)), f_(t) leaving out sample t: to first
+// order the series whose fluctuations f follows, so the blocks are as long as f's own correlation
+// needs, not as long as that of the slowest input); the leave-one-block-out means keep the
+// correlation between the series and, with decorrelated blocks, the correlation in time.
 // Value = f of the full means (not the jackknife mean, whose bias correction only adds noise at
 // the statistics we have); error = jackknife standard error, NaN below 8 samples.
+// tau_int = (error / e1)^2 / 2 with e1 the jackknife error of the same f with one sample per
+// block (leave-one-sample-out: the error f would have if all samples were independent; O(k n)
+// plus n evaluations of f). converged is false when the blocking of the pseudo-values found no
+// plateau; an explicit n_blocks is taken as given (true).
 // Throws std::invalid_argument if `series` is empty, the lengths differ, or an explicit n_blocks is
 // not in [2, length].
 Estimate jackknife(const std::vector<std::span<const double>>& series,

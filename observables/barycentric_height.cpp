@@ -52,7 +52,7 @@ class BarycentricHeight final : public Observable<D> {
         write_estimate(g, "h_cm", h, "length", summary);
         if (!std::isnan(rest_)) {
             g.write_scalar("rest_height", rest_);
-            write_estimate(g, "delta_h_cm", {h.value - rest_, h.error}, "length", summary);
+            write_estimate(g, "delta_h_cm", h.affine(1, -rest_), "length", summary);
         }
     }
 

@@ -46,9 +46,7 @@ class CollisionStatistics final : public Observable<D> {
         summary["collisions"] = total_;
         if (dt_.size() < 2) return;
         const double scale = 2.0 / double(n_);
-        Estimate omega = ratio_of_means(dtotal_.values(), dt_.values());
-        omega.value *= scale;
-        omega.error *= scale;
+        const Estimate omega = ratio_of_means(dtotal_.values(), dt_.values()).affine(scale);
         write_estimate(g, "frequency_per_particle", omega, "1/time", summary);
         if (totals_pairs_.size() != ns * ns)
             return;  // the dem engine counts contacts in total only
@@ -62,12 +60,12 @@ class CollisionStatistics final : public Observable<D> {
                 const Estimate r = ratio_of_means(inc.values(), dt_.values());
                 // Frequency seen by one particle of a (colliding with b), and by one of b.
                 const double fa = (a == b ? 2.0 : 1.0) / double(table_.species[a].count);
-                write_estimate(gp, "frequency_" + table_.species[a].name,
-                               Estimate{r.value * fa, r.error * fa}, "1/time", ps);
+                write_estimate(gp, "frequency_" + table_.species[a].name, r.affine(fa), "1/time",
+                               ps);
                 if (a != b) {
                     const double fb = 1.0 / double(table_.species[b].count);
-                    write_estimate(gp, "frequency_" + table_.species[b].name,
-                                   Estimate{r.value * fb, r.error * fb}, "1/time", ps);
+                    write_estimate(gp, "frequency_" + table_.species[b].name, r.affine(fb),
+                                   "1/time", ps);
                 }
                 summary["pairs"][pair] = ps;
             }

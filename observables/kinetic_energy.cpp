@@ -14,18 +14,12 @@ class KineticEnergy final : public Observable<D> {
     KineticEnergy(const Params&, const SceneInfo& info) : table_(*info.species) {}
 
     void sample(const SampleContext<D>& ctx) override {
-        const auto& p = ctx.engine.particles();
-        double e = 0;
-        for (std::size_t i = 0; i < p.size(); ++i) {
-            const std::uint32_t s = p.species[i];
-            e += 0.5 * table_.species[s].mass * p.v[i].squaredNorm();
-            if (p.rotating()) e += 0.5 * ctx.engine.species_inertia(s) * ang_squared<D>(p.w[i]);
-        }
-        const double per = e / double(p.size());
+        const double per = ctx.engine.kinetic_energy_per_particle(table_);
+        const std::size_t n = ctx.engine.particles().size();
         time_.push_back(ctx.time);
         energy_.push_back(per);
         phase_.push_back(ctx.measuring ? 1 : 0);
-        cpp_.push_back(2.0 * double(ctx.engine.collisions()) / double(p.size()));
+        cpp_.push_back(2.0 * double(ctx.engine.collisions()) / double(n));
         if (ctx.measuring) measured_.push(per);
     }
 

@@ -145,7 +145,8 @@ class LocalTemperature final : public Observable<D> {
             if (samples_in_block_[b] > 0) without.push_back(totals(b));
         }
         auto jack = [&](auto f) {
-            Estimate e{f(all), kNaN};
+            Estimate e{f(all), kNaN};  // block sums only: tau_int, n_eff unknown (NaN)
+            e.samples = samples_;
             const double k = double(without.size());
             if (k < 2) return e;
             std::vector<double> r;
@@ -214,12 +215,9 @@ class LocalTemperature final : public Observable<D> {
             write_estimate(g, "T_" + c + "_plain", tb, "energy", s);
             write_estimate(g, "T_" + c + "_volume", tv, "energy", s);
             if (scale > 0) {
-                write_estimate(g, "T_" + c + "_scaled", {tp.value / scale, tp.error / scale}, "",
-                               s);
-                write_estimate(g, "T_" + c + "_volume_scaled", {tv.value / scale, tv.error / scale},
-                               "", s);
-                write_estimate(g, "T_" + c + "_plain_scaled", {tb.value / scale, tb.error / scale},
-                               "", s);
+                write_estimate(g, "T_" + c + "_scaled", tp.affine(1 / scale), "", s);
+                write_estimate(g, "T_" + c + "_volume_scaled", tv.affine(1 / scale), "", s);
+                write_estimate(g, "T_" + c + "_plain_scaled", tb.affine(1 / scale), "", s);
             }
         }
         // Total T = (T_x + ... ) / d_f with jackknife over the same blocks.
@@ -236,8 +234,8 @@ class LocalTemperature final : public Observable<D> {
         write_estimate(g, "T", tt, "energy", s);
         write_estimate(g, "T_volume", ttv, "energy", s);
         if (scale > 0) {
-            write_estimate(g, "T_scaled", {tt.value / scale, tt.error / scale}, "", s);
-            write_estimate(g, "T_volume_scaled", {ttv.value / scale, ttv.error / scale}, "", s);
+            write_estimate(g, "T_scaled", tt.affine(1 / scale), "", s);
+            write_estimate(g, "T_volume_scaled", ttv.affine(1 / scale), "", s);
             g.write_scalar("peak_velocity", peak_velocity_);
             s["peak_velocity"] = peak_velocity_;
             if (g_ > 0) {

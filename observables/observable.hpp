@@ -4,6 +4,8 @@
 // /observables/<name> in the HDF5 file, scalars as datasets with `error` and `unit` attributes.
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "libgran/engine_view.hpp"
@@ -37,16 +39,26 @@ class Observable {
     virtual void write(h5::Group& group, YAML::Node& summary) const = 0;
 };
 
-// Writes a scalar estimate as a dataset with `error` and `unit` attributes, and into the summary.
+// Writes a scalar estimate as a dataset with attributes `error`, `unit`, and what the error rests
+// on (libgran/statistics.hpp): `n_eff` (effectively independent samples), `tau_int` (integrated
+// autocorrelation time in samples), `samples`, `converged` (0: no blocking plateau, the error is a
+// lower bound); NaN n_eff/tau_int when unknown. The summary node stays short:
+// {value, error, unit, n_eff}, plus `converged: false` only when the error is a lower bound.
 inline void write_estimate(h5::Group& g, const std::string& name, const Estimate& e,
                            const std::string& unit, YAML::Node& summary) {
     g.write_scalar(name, e.value);
     g.attr_on(name, "error", e.error);
     g.attr_on(name, "unit", unit);
+    g.attr_on(name, "n_eff", e.n_eff);
+    g.attr_on(name, "tau_int", e.tau_int);
+    g.attr_on(name, "samples", static_cast<std::int64_t>(e.samples));
+    g.attr_on(name, "converged", static_cast<std::int64_t>(e.converged ? 1 : 0));
     YAML::Node s;
     s["value"] = e.value;
     s["error"] = e.error;
     if (!unit.empty()) s["unit"] = unit;
+    if (std::isfinite(e.n_eff)) s["n_eff"] = std::round(e.n_eff);
+    if (!e.converged) s["converged"] = false;
     summary[name] = s;
 }
 

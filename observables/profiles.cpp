@@ -315,13 +315,17 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
             if (samples_in_block_[b] == 0) continue;
             loo.push_back(f(row_sums(row, b), volume));
         }
+        // Only block sums are kept, so tau_int and n_eff stay unknown (NaN).
+        Estimate e{full, std::nan("")};
+        e.samples = samples_;
         const double nb = double(loo.size());
-        if (nb < 2) return {full, std::nan("")};
+        if (nb < 2) return e;
         double mean = 0;
         for (double x : loo) mean += x / nb;
         double var = 0;
         for (double x : loo) var += (x - mean) * (x - mean);
-        return {full, std::sqrt(var * (nb - 1) / nb)};
+        e.error = std::sqrt(var * (nb - 1) / nb);
+        return e;
     }
 
     const SpeciesTable& table_;

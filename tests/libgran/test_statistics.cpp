@@ -1,67 +1,27 @@
 // Tests of the error analysis of correlated time series (libgran/statistics.hpp). The reference
 // values are analytic: sigma/sqrt(n) for independent samples, sqrt((1+phi)/(1-phi)/n) for an AR(1)
-// process of unit variance, and the delta method for ratios. Seeds are fixed and the random
-// numbers come from std::mt19937_64 with our own Box–Muller transform, so the samples are the same
-// with every standard library.
+// process of unit variance (tau_int = (1+phi)/(2(1-phi))), and the delta method for ratios. Seeds
+// are fixed (tests/support/random_series.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <numeric>
-#include <random>
 #include <span>
 #include <stdexcept>
 #include <vector>
 
+#include "libgran/autocorrelation.hpp"
 #include "libgran/statistics.hpp"
+#include "tests/support/random_series.hpp"
 
 namespace gran {
 namespace {
 
-class Gaussian {
-  public:
-    explicit Gaussian(std::uint64_t seed) : rng_(seed) {}
-
-    // Box–Muller; the second variate of each pair is cached.
-    double operator()() {
-        if (has_spare_) {
-            has_spare_ = false;
-            return spare_;
-        }
-        // 53 random bits, shifted into (0, 1] so that the log is finite.
-        const double u1 = (static_cast<double>(rng_() >> 11) + 1.0) * 0x1.0p-53;
-        const double u2 = static_cast<double>(rng_() >> 11) * 0x1.0p-53;
-        const double r = std::sqrt(-2.0 * std::log(u1));
-        spare_ = r * std::sin(2.0 * std::numbers::pi * u2);
-        has_spare_ = true;
-        return r * std::cos(2.0 * std::numbers::pi * u2);
-    }
-
-  private:
-    std::mt19937_64 rng_;
-    bool has_spare_ = false;
-    double spare_ = 0;
-};
-
-std::vector<double> gaussian_series(std::size_t n, double mean, double sigma, std::uint64_t seed) {
-    Gaussian g(seed);
-    std::vector<double> x(n);
-    for (double& v : x) v = mean + sigma * g();
-    return x;
-}
-
-// x_{k+1} = phi x_k + sqrt(1 - phi^2) eps_k, started in the stationary state: unit variance,
-// autocorrelation phi^t, so the variance of the mean is (1+phi)/(1-phi)/n for large n.
-std::vector<double> ar1_series(std::size_t n, double phi, std::uint64_t seed) {
-    Gaussian g(seed);
-    std::vector<double> x(n);
-    x[0] = g();
-    const double kick = std::sqrt(1 - phi * phi);
-    for (std::size_t k = 1; k < n; ++k) x[k] = phi * x[k - 1] + kick * g();
-    return x;
-}
+using testing::ar1_series;
+using testing::ar1_tau_int;
+using testing::gaussian_series;
 
 double ar1_standard_error(double phi, std::size_t n) {
     return std::sqrt((1 + phi) / (1 - phi) / static_cast<double>(n));
@@ -136,6 +96,9 @@ TEST(BlockAverage, FewerThanEightSamplesGiveNaNErrorAndPlainMean) {
     const Estimate e = block_average(x);
     EXPECT_DOUBLE_EQ(e.value, 127.0 / 7.0);
     EXPECT_TRUE(std::isnan(e.error));
+    EXPECT_TRUE(std::isnan(e.tau_int));
+    EXPECT_TRUE(std::isnan(e.n_eff));
+    EXPECT_EQ(e.samples, 7u);
 
     const std::vector<double> eight{1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0};
     EXPECT_TRUE(std::isfinite(block_average(eight).error));
@@ -153,6 +116,10 @@ TEST(BlockAverage, ConstantSeriesHasExactlyZeroError) {
     const Estimate e = block_average(x);
     EXPECT_EQ(e.value, 0.1);
     EXPECT_EQ(e.error, 0.0);
+    // No fluctuation, so no correlation to measure: tau_int and n_eff are undefined, not 1/2 and n.
+    EXPECT_TRUE(std::isnan(e.tau_int));
+    EXPECT_TRUE(std::isnan(e.n_eff));
+    EXPECT_EQ(e.samples, 1000u);
 }
 
 TEST(BlockAverage, LargeOffsetDoesNotDestroyPrecision) {
@@ -291,6 +258,12 @@ TEST(Jackknife, ExplicitBlockCountMatchesHandComputedLeaveOneOut) {
         {x}, [](std::span<const double> m) { return m[0]; }, 4);
     EXPECT_NEAR(e.error, std::sqrt(20.0 / 3.0 / 4.0), 1e-12);
     EXPECT_DOUBLE_EQ(e.value, 4.5);
+    // One sample per block: error^2 = s^2 / n = 6 / 8 = 0.75. tau_int = (5/3) / 0.75 / 2 = 10/9,
+    // n_eff = 8 / (2 tau_int) = 3.6.
+    EXPECT_NEAR(e.tau_int, 10.0 / 9.0, 1e-12);
+    EXPECT_NEAR(e.n_eff, 3.6, 1e-12);
+    EXPECT_EQ(e.samples, 8u);
+    EXPECT_TRUE(e.converged);
 }
 
 TEST(Jackknife, FewerThanEightSamplesGiveNaNErrorAndFullValue) {
@@ -305,6 +278,8 @@ TEST(Jackknife, ConstantSeriesHaveZeroError) {
     const Estimate r = ratio_of_means(a, b);
     EXPECT_DOUBLE_EQ(r.value, 0.3 / 0.7);
     EXPECT_EQ(r.error, 0.0);
+    EXPECT_TRUE(std::isnan(r.tau_int));
+    EXPECT_TRUE(std::isnan(r.n_eff));
 }
 
 TEST(Jackknife, RejectsMismatchedLengthsEmptyInputAndBadBlockCounts) {
@@ -314,6 +289,135 @@ TEST(Jackknife, RejectsMismatchedLengthsEmptyInputAndBadBlockCounts) {
     EXPECT_THROW(jackknife({}, f), std::invalid_argument);
     EXPECT_THROW(jackknife({a}, f, 1), std::invalid_argument);
     EXPECT_THROW(jackknife({a}, f, 21), std::invalid_argument);
+}
+
+// --- integrated autocorrelation time and effective sample size -----------------------------------
+
+// AR(1) with phi = 0.5, 0.9, 0.99: tau_int = 1.5, 9.5, 99.5 samples exactly. 2^20 samples are
+// ~10^4 tau_int even for phi = 0.99, where blocking's plateau bias is a few per cent; the blocking
+// tau_int has a relative noise of ~sqrt(2 / blocks) at the plateau level (~6% for 2^20 / 2^11
+// blocks) and Sokal's ~sqrt(2 (2M+1) / n) (~5% for M = 6 tau). 20% is > 3 sigma of either for
+// every seed, while a wrong convention (tau_int without the 1/2, or 2 tau_int) is off by 30-100%
+// at phi = 0.5 and a naive estimate (tau_int = 1/2) by a factor 3-200.
+class Ar1TauInt : public ::testing::TestWithParam<double> {};
+
+TEST_P(Ar1TauInt, BlockingAndSokalWindowingAreWithinTwentyPercentOfExactForEachSeed) {
+    const double phi = GetParam();
+    const double exact = ar1_tau_int(phi);
+    const std::size_t n = 1 << 20;
+    for (std::uint64_t seed : {11u, 12u, 13u, 14u}) {
+        const auto x = ar1_series(n, phi, seed);
+        const Estimate e = block_average(x);
+        EXPECT_TRUE(e.converged);
+        EXPECT_NEAR(e.tau_int, exact, 0.20 * exact) << "blocking, seed " << seed;
+        // n_eff is what makes error = sigma / sqrt(n_eff): n / (2 tau_int).
+        EXPECT_EQ(e.samples, n);
+        EXPECT_NEAR(e.n_eff, double(n) / (2 * e.tau_int), 1e-9 * e.n_eff);
+        const double n_eff_exact = double(n) / (2 * exact);
+        EXPECT_NEAR(e.n_eff, n_eff_exact, 0.25 * n_eff_exact) << "seed " << seed;
+
+        const AutocorrelationTime sokal = integrated_autocorrelation_time(x);
+        EXPECT_TRUE(sokal.converged);
+        EXPECT_NEAR(sokal.tau_int, exact, 0.20 * exact) << "Sokal, seed " << seed;
+        // The two estimators are independent methods on the same data: they must agree within
+        // their combined noise (each < 7%: 20% is ~2.5 combined sigma at worst).
+        EXPECT_NEAR(e.tau_int / sokal.tau_int, 1.0, 0.20) << "seed " << seed;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Phi, Ar1TauInt, ::testing::Values(0.5, 0.9, 0.99));
+
+TEST(BlockAverage, IndependentSamplesHaveTauIntOneHalfAndNEffN) {
+    const std::size_t n = 1 << 16;
+    const Estimate e = block_average(gaussian_series(n, 1.0, 2.0, 41));
+    // Plateau at level 0: error = naive error exactly, so tau_int = 1/2 exactly or, if the
+    // plateau is found one level later, within the ~1% noise of that level.
+    EXPECT_NEAR(e.tau_int, 0.5, 0.05);
+    EXPECT_NEAR(e.n_eff, double(n), 0.1 * double(n));
+}
+
+TEST(BlockAverage, SeriesTooShortForItsCorrelationTimeIsFlaggedNotConverged) {
+    // tau_int ~ 1000 samples in 2^12: the blocks never decorrelate, the error is a lower bound.
+    const Estimate e = block_average(ar1_series(1 << 12, 0.999, 5));
+    EXPECT_FALSE(e.converged);
+    EXPECT_LT(e.tau_int, ar1_tau_int(0.999));  // a lower bound, as documented
+    const Estimate r =
+        ratio_of_means(ar1_series(1 << 12, 0.999, 5), gaussian_series(1 << 12, 5, 1, 6));
+    EXPECT_FALSE(r.converged);
+    EXPECT_TRUE(block_average(ar1_series(1 << 16, 0.5, 5)).converged);
+}
+
+// The jackknife's tau_int compares the block jackknife with the leave-one-sample-out one. For
+// the ratio of two independent AR(1) series of equal phi, linearisation gives the same
+// autocorrelation rho_t = phi^t for the ratio as for each series, hence tau_int =
+// (1+phi)/(2(1-phi)). With at most 64 blocks a single jackknife error has ~9% noise and its tau_int
+// ~18% (observed seed to seed: 7-16 for an exact 9.5, as blocking's own tau_int of the two series
+// at this length), so the test averages 16 seeds (~5%) and requires 15%.
+TEST(Jackknife, TauIntOfRatioOfAr1SeriesMatchesExact) {
+    const double phi = 0.9;
+    const double exact = ar1_tau_int(phi);
+    const std::size_t n = 1 << 16;
+    double mean_tau = 0;
+    const int seeds = 16;
+    for (int k = 0; k < seeds; ++k) {
+        auto a = ar1_series(n, phi, 500 + 2 * std::uint64_t(k));
+        auto b = ar1_series(n, phi, 501 + 2 * std::uint64_t(k));
+        for (double& v : a) v += 5;
+        for (double& v : b) v += 2;
+        const Estimate r = ratio_of_means(a, b);
+        EXPECT_TRUE(r.converged);
+        EXPECT_NEAR(r.n_eff, double(n) / (2 * r.tau_int), 1e-9 * r.n_eff);
+        mean_tau += r.tau_int / seeds;
+    }
+    EXPECT_NEAR(mean_tau, exact, 0.15 * exact);
+}
+
+// The acceptance criterion for the error bars: over many independent replicas, the actual spread
+// of the estimates must be the error each replica reports. 200 replicas pin the spread to
+// 1/sqrt(2 * 199) = 5%, so 15% is 3 sigma; blocking's plateau bias at n ~ 1700 tau_int is ~5%.
+TEST(BlockAverage, SpreadOfAr1ReplicaMeansAgreesWithReportedErrorWithinFifteenPercent) {
+    const std::size_t n = 1 << 14;
+    const double phi = 0.9;
+    const int replicas = 200;
+    std::vector<double> means;
+    double mean_square_error = 0;
+    for (int r = 0; r < replicas; ++r) {
+        const Estimate e = block_average(ar1_series(n, phi, 7000 + std::uint64_t(r)));
+        means.push_back(e.value);
+        mean_square_error += e.error * e.error / replicas;
+    }
+    const double spread = std::sqrt(naive_error(means) * naive_error(means) * replicas);
+    EXPECT_NEAR(std::sqrt(mean_square_error) / spread, 1.0, 0.15);
+}
+
+TEST(Jackknife, SpreadOfCorrelatedRatioReplicasAgreesWithReportedErrorWithinFifteenPercent) {
+    const std::size_t n = 1 << 14;
+    const double phi = 0.9;
+    const int replicas = 200;
+    std::vector<double> ratios;
+    double mean_square_error = 0;
+    for (int r = 0; r < replicas; ++r) {
+        auto a = ar1_series(n, phi, 9000 + 2 * std::uint64_t(r));
+        auto b = ar1_series(n, phi, 9001 + 2 * std::uint64_t(r));
+        for (double& v : a) v = 5 + v;
+        for (double& v : b) v = 2 + 0.5 * v;
+        const Estimate e = ratio_of_means(a, b);
+        ratios.push_back(e.value);
+        mean_square_error += e.error * e.error / replicas;
+    }
+    const double spread = std::sqrt(naive_error(ratios) * naive_error(ratios) * replicas);
+    EXPECT_NEAR(std::sqrt(mean_square_error) / spread, 1.0, 0.15);
+}
+
+TEST(Estimate, AffineMapScalesErrorAndKeepsCorrelationDiagnostics) {
+    const Estimate e = block_average(ar1_series(1 << 12, 0.5, 3));
+    const Estimate s = e.affine(-2.0, 1.0);
+    EXPECT_DOUBLE_EQ(s.value, 1.0 - 2.0 * e.value);
+    EXPECT_DOUBLE_EQ(s.error, 2.0 * e.error);
+    EXPECT_EQ(s.tau_int, e.tau_int);
+    EXPECT_EQ(s.n_eff, e.n_eff);
+    EXPECT_EQ(s.samples, e.samples);
+    EXPECT_EQ(s.converged, e.converged);
 }
 
 TEST(Series, AccumulatesValuesAndEstimatesByBlocking) {
