@@ -1,5 +1,6 @@
 #include "bench/minimal_event_driven.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -87,23 +88,37 @@ void MinimalEventDriven<D>::heap_update(std::uint32_t id, double t) {
             pos_[heap_[k].id] = std::uint32_t(k);
             k = parent;
         }
+        heap_[k] = e;
+        pos_[id] = std::uint32_t(k);
     } else {
-        const std::size_t n = heap_.size();
-        while (true) {
-            const std::size_t first = 4 * k + 1;
-            if (first >= n) break;
-            std::size_t best = first;
-            const std::size_t last = first + 4 < n ? first + 4 : n;
-            for (std::size_t c = first + 1; c < last; ++c)
-                best = heap_[c].t < heap_[best].t ? c : best;
-            if (!(heap_[best].t < t)) break;
-            heap_[k] = heap_[best];
-            pos_[heap_[k].id] = std::uint32_t(k);
-            k = best;
+        heap_[k] = e;
+        sift_down(k);
+    }
+}
+
+template <int D>
+void MinimalEventDriven<D>::sift_down(std::size_t k) {
+    const Entry e = heap_[k];
+    const std::size_t n = heap_.size();
+    while (true) {
+        const std::size_t first = 4 * k + 1;
+        if (first >= n) break;
+        // Smallest of up to four children, its time kept in a register (no dependent reload).
+        std::size_t best = first;
+        double tb = heap_[first].t;
+        const std::size_t last = first + 4 < n ? first + 4 : n;
+        for (std::size_t c = first + 1; c < last; ++c) {
+            const double tc = heap_[c].t;
+            best = tc < tb ? c : best;
+            tb = tc < tb ? tc : tb;
         }
+        if (!(tb < e.t)) break;
+        heap_[k] = heap_[best];
+        pos_[heap_[k].id] = std::uint32_t(k);
+        k = best;
     }
     heap_[k] = e;
-    pos_[id] = std::uint32_t(k);
+    pos_[e.id] = std::uint32_t(k);
 }
 
 template <int D>
@@ -274,8 +289,54 @@ void MinimalEventDriven<D>::cross(std::uint32_t i) {
 }
 
 template <int D>
+void MinimalEventDriven<D>::sort_by_cell() {
+    // Counting sort of the particles by cell, then every per-particle array permuted, partner
+    // indices renamed, cell lists and heap rebuilt.
+    const std::size_t n = p_.size();
+    std::vector<std::uint32_t> start(head_.size() + 1, 0), order(n), inv(n);
+    for (std::size_t i = 0; i < n; ++i) ++start[std::size_t(cell_[i]) + 1];
+    for (std::size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const std::uint32_t k = start[std::size_t(cell_[i])]++;
+        order[k] = i;
+        inv[i] = k;
+    }
+    auto permute = [&](auto& a, std::size_t stride) {
+        auto old = a;
+        for (std::size_t k = 0; k < n; ++k)
+            for (std::size_t s = 0; s < stride; ++s) a[k * stride + s] = old[order[k] * stride + s];
+    };
+    permute(p_, 1);
+    permute(cell_, 1);
+    permute(cc_, D);
+    permute(count_, 1);
+    permute(ev_t_, 1);
+    permute(ev_partner_, 1);
+    permute(ev_count_, 1);
+    permute(ev_axis_, 1);
+    permute(best_t_, 1);
+    permute(best_j_, 1);
+    permute(best_count_, 1);
+    for (std::size_t k = 0; k < n; ++k) {
+        if (ev_partner_[k] >= 0) ev_partner_[k] = std::int32_t(inv[std::size_t(ev_partner_[k])]);
+        if (best_j_[k] >= 0) best_j_[k] = std::int32_t(inv[std::size_t(best_j_[k])]);
+    }
+    std::fill(head_.begin(), head_.end(), -1);
+    for (std::size_t k = n; k-- > 0;) insert(std::uint32_t(k), cell_[k]);
+    for (std::uint32_t k = 0; k < n; ++k) {
+        heap_[k] = {ev_t_[k], k};
+        pos_[k] = k;
+    }
+    for (std::size_t k = n / 4 + 1; k-- > 0;) sift_down(k);
+}
+
+template <int D>
 void MinimalEventDriven<D>::run_until(std::uint64_t collision_target) {
     while (collisions_ < collision_target) {
+        if (events_ >= next_sort_) {
+            sort_by_cell();
+            next_sort_ = events_ + 16 * p_.size();
+        }
         const std::uint32_t i = heap_[0].id;
         now_ = heap_[0].t;
         ++events_;

@@ -13,7 +13,8 @@
 //  - after a cell crossing only the newly adjacent layer of 3^(D-1) cells is scanned and the
 //    earlier best collision is kept if its partner has not collided since;
 //  - pairs are rejected before the square root when their collision cannot beat the best so far;
-//  - an indexed 4-ary min-heap of (time, particle) entries.
+//  - an indexed 4-ary min-heap of (time, particle) entries;
+//  - particle storage re-sorted by cell every 16 N events (neighbours stay close in memory).
 #include <cstdint>
 #include <vector>
 
@@ -45,6 +46,8 @@ class MinimalEventDriven {
     void insert(std::uint32_t i, std::int32_t c);
     void remove(std::uint32_t i);
     void heap_update(std::uint32_t i, double t);
+    void sift_down(std::size_t k);
+    void sort_by_cell();
 
     double L_;
     int nc_;    // cells per axis
@@ -71,6 +74,7 @@ class MinimalEventDriven {
     std::vector<std::uint32_t> pos_;
     double now_ = 0;
     std::uint64_t events_ = 0, collisions_ = 0, overlaps_ = 0;
+    std::uint64_t next_sort_ = 0;  // events at which the storage is next re-sorted by cell
 };
 
 extern template class MinimalEventDriven<2>;
