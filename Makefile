@@ -41,10 +41,13 @@ test: build
 validate: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -L validate
 
+# gran_bench_features: what each scene feature costs against the bare gas, and the bare gas
+# against a minimal specialised kernel (about 10 min; docs/performance.md).
 bench: build
 	@mkdir -p results
 	$(BUILD_DIR)/gran_bench --csv results/bench.csv
 	$(BUILD_DIR)/gran_bench_dem --csv results/bench.csv | tee results/bench_dem.txt
+	$(BUILD_DIR)/gran_bench_features --csv results/feature_cost.csv | tee results/feature_cost.txt
 
 # Barrat & Trizac 2002: Tables I-II and Figs. 1-4, 6-9, 13-17 (36 runs on all cores, about 8 min
 # on 2 cores; completed runs are reused). Writes results/barrat-trizac-2002/{figN,tables}.png,

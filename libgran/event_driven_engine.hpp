@@ -148,6 +148,7 @@ class EventDrivenEngine {
     }
     void predict(std::uint32_t i);
     void predict_after_crossing(std::uint32_t i, int axis, int dir);
+    // Writes up to 3^D cell ids to out (room for 3^D needed), returns how many are neighbours.
     int neighbour_cells(std::uint32_t i, std::int32_t* out, int layer_axis = -1,
                         int layer_dir = 0) const;
     void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,

@@ -43,14 +43,18 @@ class VelocityPdf final : public Observable<D> {
             var[p.species[i]] += c.cwiseProduct(c);
             cnt[p.species[i]] += 1;
         }
+        // Standard deviations per species and component, once per sample (not per particle).
+        std::vector<Vec<D>> sd(ns);
+        for (std::size_t s = 0; s < ns; ++s) {
+            for (int a = 0; a < D; ++a) sd[s][a] = std::sqrt(var[s][a] / cnt[s]);
+        }
         std::vector<Vec<D>> m2(ns, Vec<D>::Zero()), m4(ns, Vec<D>::Zero());
         for (std::size_t i = 0; i < p.size(); ++i) {
             const std::uint32_t s = p.species[i];
             auto& q = per_[s];
             const Vec<D> c = p.v[i] - u;
             for (int a = 0; a < D; ++a) {
-                const double sd = std::sqrt(var[s][a] / cnt[s]);
-                const double x = c[a] / sd;
+                const double x = c[a] / sd[s][a];
                 q.raw[a].blocks[block](c[a]);
                 q.scaled[a].blocks[block](x);
                 m2[s][a] += x * x;
