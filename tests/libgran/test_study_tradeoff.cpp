@@ -252,3 +252,26 @@ TEST_F(TradeoffCommand, RefusesAStudyWhoseReferenceIsNoPoint) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(TradeoffCommand, RefusesUnknownKnobsAndMalformedLaddersWithExitCode2) {
+    std::ofstream(path("gas.yaml")) << "dimension: 2\nspecies: [{name: a, count: 50}]\n"
+                                       "box: {packing_fraction: 0.05}\n"
+                                       "run: {measurement: 10}\n";
+    const auto unknown = run_gran(
+        {"tradeoff", path("gas.yaml"), "--knobs", "timestep", "--dry-run", "-o", path("out")});
+    EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+    EXPECT_NE(unknown.output.find("unknown knob 'timestep'"), std::string::npos) << unknown.output;
+    const auto malformed =
+        run_gran({"tradeoff", path("gas.yaml"), "--knob", "seed", "--dry-run", "-o", path("out")});
+    EXPECT_EQ(malformed.exit_code, 2) << malformed.output;
+    EXPECT_NE(malformed.output.find("KEY=v1,v2"), std::string::npos) << malformed.output;
+    // A ladder value the scene refuses is named before anything runs.
+    const auto refused = run_gran(
+        {"tradeoff", path("gas.yaml"), "--knob", "interactions.alpha=0.5,1.5", "-o", path("out")});
+    EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    EXPECT_NE(refused.output.find("interactions.alpha"), std::string::npos) << refused.output;
+}
+
+}  // namespace
