@@ -620,7 +620,8 @@ void EventDrivenEngine<D>::set_wall(int axis, int side, WallRule rule, const Wal
 
 template <int D>
 typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
-    double t_limit, std::uint64_t collision_limit, const std::atomic<bool>* interrupt) {
+    double t_limit, std::uint64_t collision_limit, const std::atomic<bool>* interrupt,
+    std::uint64_t event_limit) {
     // Internal times are relative to t_origin_ (see rebase_time()).
     double limit = t_limit - t_origin_;
     if (p_.size() == 0) {
@@ -636,6 +637,7 @@ typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
         if (interrupt && (++check & 1023u) == 0 && interrupt->load(std::memory_order_relaxed)) {
             return Stop::Interrupted;
         }
+        if (counters_.events >= event_limit) return Stop::EventLimit;
         if (events_since_sort_ >= sort_every_) {
             // Between events the state is consistent: re-sort, then rebuild the queue.
             rebase_time();

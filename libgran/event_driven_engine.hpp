@@ -74,15 +74,17 @@ inline double pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sig
 template <int D>
 class EventDrivenEngine {
   public:
-    enum class Stop { TimeLimit, CollisionLimit, Interrupted, NoEvents };
+    enum class Stop { TimeLimit, CollisionLimit, Interrupted, NoEvents, EventLimit };
 
     EventDrivenEngine(const Box<D>& box, const SpeciesTable& table, Particles<D> particles,
                       EngineSettings settings);
 
     // Processes events up to time t_limit; stops early once the total collision count reaches
-    // collision_limit, or when *interrupt becomes true (checked every 1024 events).
+    // collision_limit, once the total event count reaches event_limit (the run's watchdog checks
+    // progress between such chunks), or when *interrupt becomes true (checked every 1024 events).
     Stop advance(double t_limit, std::uint64_t collision_limit,
-                 const std::atomic<bool>* interrupt = nullptr);
+                 const std::atomic<bool>* interrupt = nullptr,
+                 std::uint64_t event_limit = UINT64_MAX);
 
     double now() const { return limit_now_ == kNoLimit ? t_origin_ + now_ : limit_now_; }
     const Particles<D>& particles() const { return p_; }
