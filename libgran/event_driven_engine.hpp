@@ -156,6 +156,13 @@ class EventDrivenEngine {
                     std::int32_t& partner) const;
     template <bool Gravity>
     void scan_gathered(std::uint32_t i, std::size_t n, double& best, std::int32_t& partner) const;
+    // Periodic axes with one cell (shorter than 4 largest diameters): the minimum image is not
+    // enough, a pair may meet through another image before either particle re-predicts (at its
+    // next wrap, after travelling at most one period). The scan then tries the images k L,
+    // |k| <= 2, along those axes (image_offsets_, empty when no axis needs them).
+    void scan_gathered_images(std::uint32_t i, std::size_t n, double& best,
+                              std::int32_t& partner) const;
+    std::vector<Vec<D>> image_offsets_;
     double axis_event(std::uint32_t i, int a, double best, std::uint8_t& kind, int& code) const;
     void schedule(std::uint32_t i, double collision, std::int32_t partner);
     void collide(std::uint32_t i, std::uint32_t j);
