@@ -39,8 +39,9 @@ Particles<D> initial_particles(const Scene& sc) {
     Rng rng = make_rng(sc.seed, Stream::Placement);
     Particles<D> p;
     try {
-        p = sc.placement == "lattice" ? place_lattice<D>(box, sc.species, rng)
-                                      : place_random<D>(box, sc.species, rng);
+        p = sc.placement == "lattice"        ? place_lattice<D>(box, sc.species, rng)
+            : sc.placement == "close_packed" ? place_close_packed<D>(box, sc.species, rng)
+                                             : place_random<D>(box, sc.species, rng);
     } catch (const PlacementError& e) {
         throw SceneError(sc.box_location + ": " + e.what());
     }
@@ -297,6 +298,9 @@ inline DemContactTable dem_contact_table(const Scene& sc) {
     }
 }
 
+// More steps than any run can take (1e14 steps of one particle: ~100 days at 1e7 steps/s).
+constexpr double kMaxDemSteps = 1e14;
+
 // The soft-sphere DEM engine in the run loop: whole time steps up to each sample; walls come from
 // the wall drivers; no collision records (observables that need them are refused).
 template <int D>
@@ -310,6 +314,17 @@ class DemRunner {
           engine_(make_engine(sc, table_)),
           view_(engine_),
           watchdog_(sc.watchdog) {
+        // A time step so short that the schedule cannot be stepped through in any run time (e.g.
+        // springs stiff enough to make t_c ~ 1e-150): refused rather than left to "hang".
+        const double steps = (sc.schedule.equilibration + sc.schedule.measurement) / engine_.dt();
+        if (steps > kMaxDemSteps) {
+            throw SceneError(fmt::format(
+                "{}: dt = {:.4g} would need {:.3g} steps for the run's {:g} time units (more than "
+                "{:g}, years of computing): lower engine.stiffness (or raise engine.contact_time) "
+                "or shorten the run",
+                sc.engine_location, engine_.dt(), steps,
+                sc.schedule.equilibration + sc.schedule.measurement, kMaxDemSteps));
+        }
         for (std::size_t k = 0; k < drivers.size(); ++k) {
             const std::string why = drivers[k]->attach(engine_);
             if (!why.empty()) sc.drivers[k].params.fail(drivers[k]->dem_refusal_key(), why);

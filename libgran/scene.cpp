@@ -83,8 +83,9 @@ Schema box_schema() {
 }
 
 Schema initial_schema() {
-    return {choice("placement", "random", {"random", "lattice"},
-                   "random non-overlapping insertion or a square/cubic lattice"),
+    return {choice("placement", "random", {"random", "lattice", "close_packed"},
+                   "random non-overlapping insertion, a square/cubic lattice, or a hexagonal/fcc "
+                   "lattice (close_packed: up to the densest packing)"),
             real("temperature", "1", "energy", "initial temperature of every species (Maxwellian)",
                  0, 1e308, true)};
 }
