@@ -86,9 +86,13 @@ void EventDrivenEngine<D>::build_cells() {
     std::int64_t total = 1;
     for (int a = 0; a < D; ++a) {
         auto nc = static_cast<std::int64_t>(std::floor(box_.length[a] / dmax));
-        // Periodic axes need >= 3 cells for the 3-cell neighbourhood to be distinct; fewer means
-        // one cell whose images are found by the minimum-image convention.
-        if (nc < 1 || (box_.periodic[a] && nc < 3)) nc = 1;
+        // Periodic axes need >= 4 cells: then two particles in adjacent cells are less than half
+        // a period apart, so the minimum image is the image through which they can meet before
+        // one of them crosses a cell. With 3 cells, particles in cells 0 and 2 (adjacent through
+        // the wrap) may recede in the minimum image and meet through the other one without
+        // either crossing a cell: collisions were missed (overlaps of up to 35% of a diameter,
+        // tests/extremes/test_mass_and_size_ratio.cpp). Fewer means one cell (below).
+        if (nc < 1 || (box_.periodic[a] && nc < 4)) nc = 1;
         ncell_[a] = static_cast<std::int32_t>(nc);
         total *= nc;
     }
@@ -99,12 +103,32 @@ void EventDrivenEngine<D>::build_cells() {
         for (int a = 1; a < D; ++a) {
             if (ncell_[a] > ncell_[a_max]) a_max = a;
         }
-        if (ncell_[a_max] <= 3) break;
+        if (ncell_[a_max] <= 4) break;
         total /= ncell_[a_max];
-        ncell_[a_max] = std::max(ncell_[a_max] / 2, 3);
+        ncell_[a_max] = std::max(ncell_[a_max] / 2, 4);
         total *= ncell_[a_max];
     }
     for (int a = 0; a < D; ++a) cell_width_[a] = box_.length[a] / ncell_[a];
+    image_offsets_.clear();
+    bool wrapped = false;
+    for (int a = 0; a < D; ++a) wrapped = wrapped || (box_.periodic[a] && ncell_[a] == 1);
+    if (wrapped) {
+        std::array<int, D> k;
+        k.fill(-2);
+        while (true) {
+            Vec<D> off = Vec<D>::Zero();
+            bool ok = true;
+            for (int a = 0; a < D; ++a) {
+                const bool w = box_.periodic[a] && ncell_[a] == 1;
+                if (!w && k[a] != 0) ok = false;
+                off[a] = k[a] * box_.length[a];
+            }
+            if (ok) image_offsets_.push_back(off);
+            int a = 0;
+            while (a < D && ++k[a] > 2) k[a++] = -2;
+            if (a == D) break;
+        }
+    }
 
     slots_ = double(p_.size()) >= 0.25 * double(total);
     // At most 4 equal disks (8 spheres) have centres in a cell one diameter wide; smaller species
@@ -257,7 +281,9 @@ void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells
                 buf[n++] = std::uint32_t(j);
         }
     }
-    if (gravity_) {
+    if (!image_offsets_.empty()) {
+        scan_gathered_images(i, n, best_out, partner_out);
+    } else if (gravity_) {
         scan_gathered<true>(i, n, best_out, partner_out);
     } else {
         scan_gathered<false>(i, n, best_out, partner_out);
@@ -314,6 +340,32 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, std::size_t n, double&
     }
     best_out = best;
     partner_out = partner;
+}
+
+template <int D>
+void EventDrivenEngine<D>::scan_gathered_images(std::uint32_t i, std::size_t n, double& best,
+                                                std::int32_t& partner) const {
+    const double* sig = &sigma_pair_[p_.species[i] * ns_];
+    for (std::size_t m = 0; m < n; ++m) {
+        const std::uint32_t j = gather_[m];
+        if (j == i) continue;
+        const double dt = now_ - p_.t[j];
+        Vec<D> rj = p_.r[j] + dt * p_.v[j];
+        Vec<D> vj = p_.v[j];
+        if (gravity_) {
+            rj += (0.5 * dt * dt) * g_;
+            vj += dt * g_;
+        }
+        const Vec<D> dr = box_.separation(p_.r[i], rj);
+        const Vec<D> dv = p_.v[i] - vj;
+        for (const Vec<D>& off : image_offsets_) {
+            const double t = pair_collision_time<D>(dr + off, dv, sig[p_.species[j]], best);
+            if (t < best) {
+                best = t;
+                partner = std::int32_t(j);
+            }
+        }
+    }
 }
 
 template <int D>
@@ -563,7 +615,12 @@ void EventDrivenEngine<D>::cross_cell(std::uint32_t i, int code) {
     }
     cell_insert(i, cell_id(cc_[i]));
     ++counters_.cell_crossings;
-    predict_after_crossing(i, a, dir);
+    if (ncell_[a] == 1) {
+        predict(
+            i);  // a wrap on a one-cell axis: images within reach changed (scan_gathered_images)
+    } else {
+        predict_after_crossing(i, a, dir);
+    }
     queue_.update(i, ev_time_[i]);
 }
 
@@ -648,7 +705,8 @@ void EventDrivenEngine<D>::set_wall(int axis, int side, WallRule rule, const Wal
 
 template <int D>
 typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
-    double t_limit, std::uint64_t collision_limit, const std::atomic<bool>* interrupt) {
+    double t_limit, std::uint64_t collision_limit, const std::atomic<bool>* interrupt,
+    std::uint64_t event_limit) {
     // Internal times are relative to t_origin_ (see rebase_time()).
     double limit = t_limit - t_origin_;
     if (p_.size() == 0) {
@@ -664,6 +722,7 @@ typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
         if (interrupt && (++check & 1023u) == 0 && interrupt->load(std::memory_order_relaxed)) {
             return Stop::Interrupted;
         }
+        if (counters_.events >= event_limit) return Stop::EventLimit;
         if (events_since_sort_ >= sort_every_) {
             // Between events the state is consistent: re-sort, then rebuild the queue.
             rebase_time();

@@ -74,15 +74,17 @@ inline double pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sig
 template <int D>
 class EventDrivenEngine {
   public:
-    enum class Stop { TimeLimit, CollisionLimit, Interrupted, NoEvents };
+    enum class Stop { TimeLimit, CollisionLimit, Interrupted, NoEvents, EventLimit };
 
     EventDrivenEngine(const Box<D>& box, const SpeciesTable& table, Particles<D> particles,
                       EngineSettings settings);
 
     // Processes events up to time t_limit; stops early once the total collision count reaches
-    // collision_limit, or when *interrupt becomes true (checked every 1024 events).
+    // collision_limit, once the total event count reaches event_limit (the run's watchdog checks
+    // progress between such chunks), or when *interrupt becomes true (checked every 1024 events).
     Stop advance(double t_limit, std::uint64_t collision_limit,
-                 const std::atomic<bool>* interrupt = nullptr);
+                 const std::atomic<bool>* interrupt = nullptr,
+                 std::uint64_t event_limit = UINT64_MAX);
 
     double now() const { return limit_now_ == kNoLimit ? t_origin_ + now_ : limit_now_; }
     const Particles<D>& particles() const { return p_; }
@@ -155,6 +157,13 @@ class EventDrivenEngine {
                     std::int32_t& partner) const;
     template <bool Gravity>
     void scan_gathered(std::uint32_t i, std::size_t n, double& best, std::int32_t& partner) const;
+    // Periodic axes with one cell (shorter than 4 largest diameters): the minimum image is not
+    // enough, a pair may meet through another image before either particle re-predicts (at its
+    // next wrap, after travelling at most one period). The scan then tries the images k L,
+    // |k| <= 2, along those axes (image_offsets_, empty when no axis needs them).
+    void scan_gathered_images(std::uint32_t i, std::size_t n, double& best,
+                              std::int32_t& partner) const;
+    std::vector<Vec<D>> image_offsets_;
     double axis_event(std::uint32_t i, int a, double best, std::uint8_t& kind, int& code) const;
     void schedule(std::uint32_t i, double collision, std::int32_t partner);
     void collide(std::uint32_t i, std::uint32_t j);

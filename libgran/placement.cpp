@@ -118,9 +118,11 @@ Particles<D> place_random(const Box<D>& box, const SpeciesTable& table, Rng& rng
             throw PlacementError(fmt::format(
                 "random placement failed: particle {} of {} (species '{}') found no free spot "
                 "after {} "
-                "attempts at packing fraction {:.4g}; use initial.placement: lattice or a lower "
-                "packing fraction",
-                idx + 1, order.size(), table.species[s].name, attempts, phi));
+                "attempts at packing fraction {:.4g}; use initial.placement: lattice (up to "
+                "{:.4f}), "
+                "close_packed (up to {:.4f}) or a lower packing fraction",
+                idx + 1, order.size(), table.species[s].name, attempts, phi,
+                D == 2 ? std::numbers::pi / 4 : std::numbers::pi / 6, max_packing_fraction(D)));
         }
     }
     return p;
@@ -148,8 +150,9 @@ Particles<D> place_lattice(const Box<D>& box, const SpeciesTable& table, Rng& rn
             throw PlacementError(
                 fmt::format("lattice placement failed: {} sites along axis {} are {:.4g} apart, "
                             "less than the largest "
-                            "diameter {:.4g}; enlarge the box or lower the packing fraction",
-                            m[a], a, box.length[a] / double(m[a]), dmax));
+                            "diameter {:.4g}; enlarge the box, lower the packing fraction or use "
+                            "initial.placement: close_packed (hexagonal/fcc, up to {:.4f})",
+                            m[a], a, box.length[a] / double(m[a]), dmax, max_packing_fraction(D)));
         }
     }
     std::vector<std::uint32_t> seq = species_sequence<D>(table);

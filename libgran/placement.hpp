@@ -30,6 +30,10 @@ Particles<D> place_random(const Box<D>& box, const SpeciesTable& table, Rng& rng
 // Simple square/cubic lattice with spacing >= largest diameter; species shuffled over sites.
 template <int D>
 Particles<D> place_lattice(const Box<D>& box, const SpeciesTable& table, Rng& rng);
+// Hexagonal (2D) or fcc (3D) lattice stretched to the box, up to the densest packing; vacancies
+// (sites beyond n) spread evenly, species shuffled over the particles (close_packed_placement.cpp).
+template <int D>
+Particles<D> place_close_packed(const Box<D>& box, const SpeciesTable& table, Rng& rng);
 
 // Gaussian velocities (and angular velocities if allocated) at temperature T for every species,
 // total momentum removed, then rescaled so the total translational temperature is exactly T.

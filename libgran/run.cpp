@@ -18,6 +18,7 @@
 #include "libgran/equilibration.hpp"
 #include "libgran/h5.hpp"
 #include "libgran/placement.hpp"
+#include "libgran/watchdog.hpp"
 #include "observables/observable.hpp"
 
 namespace gran {
@@ -40,8 +41,9 @@ Particles<D> initial_particles(const Scene& sc) {
     Rng rng = make_rng(sc.seed, Stream::Placement);
     Particles<D> p;
     try {
-        p = sc.placement == "lattice" ? place_lattice<D>(box, sc.species, rng)
-                                      : place_random<D>(box, sc.species, rng);
+        p = sc.placement == "lattice"        ? place_lattice<D>(box, sc.species, rng)
+            : sc.placement == "close_packed" ? place_close_packed<D>(box, sc.species, rng)
+                                             : place_random<D>(box, sc.species, rng);
     } catch (const PlacementError& e) {
         throw SceneError(sc.box_location + ": " + e.what());
     }
@@ -146,7 +148,8 @@ make_plugins(const Scene& sc) {
     return {std::move(drivers), std::move(observables)};
 }
 
-enum class Advance { Reached, Interrupted, Stalled };
+// Watchdog: stopped with a reason (runner.failure()), see libgran/watchdog.hpp.
+enum class Advance { Reached, Interrupted, Stalled, Watchdog };
 
 template <int D>
 using DriverList = std::vector<std::unique_ptr<Driver<D>>>;
@@ -163,7 +166,10 @@ class EventDrivenRunner {
     EventDrivenRunner(const Scene& sc, DriverList<D>& drivers, ObservableList<D>& observables)
         : drivers_(drivers),
           engine_(make_box<D>(sc), sc.species, initial_particles<D>(sc), sc.engine),
-          view_(engine_) {
+          view_(engine_),
+          watchdog_(sc.watchdog),
+          tc_(sc.engine.tc_guard ? sc.engine.tc : 0.0),
+          species_(&sc.species) {
         for (auto& d : drivers) d->attach(engine_);
         for (auto& o : observables) {
             if (auto* s = o->collision_sink()) fanout_.sinks.push_back(s);
@@ -182,9 +188,13 @@ class EventDrivenRunner {
             double t_driver = kInf;
             for (auto& d : drivers_) t_driver = std::min(t_driver, d->next_time());
             const double t_stop = std::min(t_target, t_driver);
-            const auto stop = engine_.advance(t_stop, c_target, interrupt);
+            const auto stop = engine_.advance(t_stop, c_target, interrupt, next_check());
             using Stop = typename EventDrivenEngine<D>::Stop;
             if (stop == Stop::Interrupted) return Advance::Interrupted;
+            if (stop == Stop::EventLimit) {
+                if (!check_window()) return Advance::Watchdog;
+                continue;
+            }
             if (stop == Stop::NoEvents) {
                 spdlog::warn("no more events (all particles at rest?): stopping the run early");
                 return Advance::Stalled;
@@ -203,6 +213,7 @@ class EventDrivenRunner {
     // Observables read positions and velocities at now() (under gravity velocities change in free
     // flight too).
     void synchronize() { engine_.synchronize(); }
+    const std::string& failure() const { return failure_; }
 
     void write_performance(h5::Group& perf, YAML::Node& ps, double cpu) const {
         const auto& c = engine_.counters();
@@ -235,10 +246,38 @@ class EventDrivenRunner {
     }
 
   private:
+    std::uint64_t next_check() const {
+        return watchdog_.enabled ? window_start_events_ + watchdog_.window : UINT64_MAX;
+    }
+    // Watchdog, once per window of events: progress of the simulated time, and a finite state
+    // (positions are lazy, at each particle's own clock, but a NaN stays a NaN).
+    bool check_window() {
+        ProgressWindow w;
+        w.events = engine_.counters().events - window_start_events_;
+        w.t_begin = window_start_time_;
+        w.t_end = engine_.now();
+        w.particles = engine_.particles().size();
+        w.reference_rate = reference_rate_;
+        w.tc = tc_;
+        failure_ = check_progress(watchdog_, w);
+        if (failure_.empty()) failure_ = check_finite<D>(view_, *species_);
+        if (reference_rate_ == 0) reference_rate_ = event_rate(w);
+        window_start_events_ = engine_.counters().events;
+        window_start_time_ = engine_.now();
+        return failure_.empty();
+    }
+
     DriverList<D>& drivers_;
     CollisionFanout<D> fanout_;
     EventDrivenEngine<D> engine_;
     EventDrivenView<D> view_;
+    WatchdogSettings watchdog_;
+    double tc_;  // TC window, 0 with the guard off
+    const SpeciesTable* species_;
+    std::uint64_t window_start_events_ = 0;
+    double window_start_time_ = 0;
+    double reference_rate_ = 0;
+    std::string failure_;
 };
 
 // engine.type: dem. Grain-grain restitution per species pair from the pair laws (alpha).
@@ -261,6 +300,9 @@ inline DemContactTable dem_contact_table(const Scene& sc) {
     }
 }
 
+// More steps than any run can take (1e14 steps of one particle: ~100 days at 1e7 steps/s).
+constexpr double kMaxDemSteps = 1e14;
+
 // The soft-sphere DEM engine in the run loop: whole time steps up to each sample; walls come from
 // the wall drivers; no collision records (observables that need them are refused).
 template <int D>
@@ -269,7 +311,22 @@ class DemRunner {
     static constexpr const char* kWorkUnit = "steps";
 
     DemRunner(const Scene& sc, DriverList<D>& drivers, ObservableList<D>& observables)
-        : sc_(sc), table_(dem_contact_table(sc)), engine_(make_engine(sc, table_)), view_(engine_) {
+        : sc_(sc),
+          table_(dem_contact_table(sc)),
+          engine_(make_engine(sc, table_)),
+          view_(engine_),
+          watchdog_(sc.watchdog) {
+        // A time step so short that the schedule cannot be stepped through in any run time (e.g.
+        // springs stiff enough to make t_c ~ 1e-150): refused rather than left to "hang".
+        const double steps = (sc.schedule.equilibration + sc.schedule.measurement) / engine_.dt();
+        if (steps > kMaxDemSteps) {
+            throw SceneError(fmt::format(
+                "{}: dt = {:.4g} would need {:.3g} steps for the run's {:g} time units (more than "
+                "{:g}, years of computing): lower engine.stiffness (or raise engine.contact_time) "
+                "or shorten the run",
+                sc.engine_location, engine_.dt(), steps,
+                sc.schedule.equilibration + sc.schedule.measurement, kMaxDemSteps));
+        }
         for (std::size_t k = 0; k < drivers.size(); ++k) {
             const std::string why = drivers[k]->attach(engine_);
             if (!why.empty()) sc.drivers[k].params.fail(drivers[k]->dem_refusal_key(), why);
@@ -292,10 +349,25 @@ class DemRunner {
     const DemEngine<D>& engine() const { return engine_; }
 
     Advance advance(double t_target, std::uint64_t, const std::atomic<bool>* interrupt) {
-        const auto stop = engine_.advance(t_target, interrupt);
-        return stop == DemEngine<D>::Stop::Interrupted ? Advance::Interrupted : Advance::Reached;
+        if (!watchdog_.enabled) {
+            const auto stop = engine_.advance(t_target, interrupt);
+            return stop == DemEngine<D>::Stop::Interrupted ? Advance::Interrupted
+                                                           : Advance::Reached;
+        }
+        // Watchdog: chunks of `window` whole steps (the same steps as one advance), each followed
+        // by a finiteness check. Time cannot stall here: now() = t0 + steps dt with dt > 0.
+        while (engine_.now() < t_target) {
+            const double chunk_end =
+                engine_.now() + (double(watchdog_.window) - 0.5) * engine_.dt();
+            const auto stop = engine_.advance(std::min(t_target, chunk_end), interrupt);
+            if (stop == DemEngine<D>::Stop::Interrupted) return Advance::Interrupted;
+            failure_ = check_finite<D>(view_, sc_.species);
+            if (!failure_.empty()) return Advance::Watchdog;
+        }
+        return Advance::Reached;
     }
     void synchronize() {}  // the state is always at now()
+    const std::string& failure() const { return failure_; }
 
     void write_performance(h5::Group& perf, YAML::Node& ps, double cpu) const {
         const auto& c = engine_.counters();
@@ -382,6 +454,8 @@ class DemRunner {
     DemContactTable table_;
     DemEngine<D> engine_;
     DemView<D> view_;
+    WatchdogSettings watchdog_;
+    std::string failure_;
 };
 
 template <int D, class Runner>
@@ -409,6 +483,7 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
     Progress progress(opt, sc.progress_interval, Runner::kWorkUnit);
     bool interrupted = false;
     bool stalled = false;
+    std::string watchdog_stop;  // why the watchdog stopped the run (empty: it did not)
     std::size_t samples_taken = 0;
     std::vector<double> measured_energy;  // per measurement sample, for the warm-up check
     measured_energy.reserve(expected_samples);
@@ -433,9 +508,15 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
                 by_time ? UINT64_MAX : c0 + coll_of(double(k) * s.sample_interval);
             const Advance adv = runner.advance(t_target, c_target, opt.interrupt);
             interrupted = adv == Advance::Interrupted;
-            stalled = adv == Advance::Stalled;
+            stalled = adv == Advance::Stalled || adv == Advance::Watchdog;
+            if (adv == Advance::Watchdog) watchdog_stop = runner.failure();
             if (interrupted || stalled) break;
             runner.synchronize();
+            if (sc.watchdog.enabled) {
+                watchdog_stop = check_finite<D>(view, sc.species);  // never sample a NaN
+                stalled = !watchdog_stop.empty();
+                if (stalled) break;
+            }
             SampleContext<D> ctx{runner.now(), measuring, expected_samples, view, sc.species};
             for (auto& o : observables) o->sample(ctx);
             if (measuring) {
@@ -468,6 +549,7 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
     const double wall = progress.elapsed();
     const double cpu = double(std::clock()) / CLOCKS_PER_SEC - cpu0;
     if (interrupted) spdlog::warn("interrupted: writing what was measured so far");
+    if (!watchdog_stop.empty()) spdlog::warn("watchdog: writing what was measured so far");
 
     // Write to a temporary file and rename: an existing result is never clobbered by a failed run.
     const auto parent = std::filesystem::path(opt.output).parent_path();
@@ -475,6 +557,7 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
     const std::string part = opt.output + ".part";
     RunReport rep;
     rep.completed = !interrupted && !stalled;
+    rep.error = watchdog_stop;
     rep.output = opt.output;
     rep.summary_file = summary_path_for(opt.output);
     YAML::Node summary;
@@ -541,6 +624,7 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
         const bool driven = std::any_of(sc.drivers.begin(), sc.drivers.end(),
                                         [](const auto& d) { return d.type != "none"; });
         report_equilibration(check_equilibration(measured_energy), s, driven, perf, ps);
+        if (!watchdog_stop.empty()) perf.attr("watchdog_stop", watchdog_stop);
 
         if (!frame_time.empty()) {
             h5::Group pg = root.group("particles/all");
@@ -568,8 +652,11 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& driver
         summary["scene"] = sc.file;
         if (!sc.title.empty()) summary["title"] = sc.title;
         summary["result"] = opt.output;
-        summary["status"] =
-            interrupted ? "interrupted" : (stalled ? "stopped: no more events" : "completed");
+        summary["status"] = interrupted              ? "interrupted"
+                            : !watchdog_stop.empty() ? "stopped by the watchdog"
+                            : stalled                ? "stopped: no more events"
+                                                     : "completed";
+        if (!watchdog_stop.empty()) summary["error"] = watchdog_stop;
         summary["dimension"] = D;
         summary["particles"] = n;
         summary["packing_fraction"] = sc.packing_fraction;

@@ -18,7 +18,8 @@ struct RunOptions {
 };
 
 struct RunReport {
-    bool completed = false;  // false when interrupted
+    bool completed = false;  // false when interrupted or stopped
+    std::string error;       // non-empty: the watchdog stopped the run (what, when, what to change)
     std::string output;
     std::string summary_file;
     YAML::Node summary;

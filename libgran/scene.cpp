@@ -83,8 +83,9 @@ Schema box_schema() {
 }
 
 Schema initial_schema() {
-    return {choice("placement", "random", {"random", "lattice"},
-                   "random non-overlapping insertion or a square/cubic lattice"),
+    return {choice("placement", "random", {"random", "lattice", "close_packed"},
+                   "random non-overlapping insertion, a square/cubic lattice, or a hexagonal/fcc "
+                   "lattice (close_packed: up to the densest packing)"),
             real("temperature", "1", "energy", "initial temperature of every species (Maxwellian)",
                  0, 1e308, true)};
 }
@@ -152,7 +153,28 @@ Schema run_schema() {
             real("sample_interval", "1", "unit", "interval between samples of the observables", 0,
                  1e308, true),
             real("progress_interval", "10", "s",
-                 "seconds between progress log lines when not on a terminal", 0, 1e308, true)};
+                 "seconds between progress log lines when not on a terminal", 0, 1e308, true),
+            list_of(ParamType::Map, "watchdog",
+                    "stops a run that stalls or produces NaN (see section run.watchdog)")};
+}
+
+Schema watchdog_schema() {
+    return {
+        boolean("enabled", "true",
+                "stop a run whose simulated time stalls, whose event rate explodes or whose "
+                "state turns non-finite (with a message; the result keeps what was measured)"),
+        integer("window", "1000000",
+                "events (event_driven) or steps (dem) between checks; a window that leaves the "
+                "simulated time unchanged stops the run",
+                1, 1e18),
+        real("max_rate_growth", "1e6", "",
+             "event_driven: stop when the events per particle per unit time of a window exceed "
+             "this multiple of the first window's (inelastic collapse)",
+             1, 1e308),
+        real("max_events_per_tc", "0.1", "",
+             "event_driven with the TC model: stop when a window has more events per particle "
+             "per TC window engine.tc than this (resting contacts resolved by micro-collisions)",
+             0, 1e308, true)};
 }
 
 Schema output_schema() {
@@ -293,18 +315,20 @@ std::vector<std::string> split(const std::string& s, char sep) {
 }  // namespace
 
 std::vector<SectionDoc> scene_sections() {
-    return {{"scene", "top-level keys of a scene file", top_schema()},
-            {"box", "box geometry: give lengths, or packing_fraction (and aspect)", box_schema()},
-            {"species", "one entry per species", species_schema()},
-            {"interactions",
-             "default pair law and its parameters, plus `pairs` overrides (see `gran list laws`)",
-             {text("law", "constant_restitution", "default pair law")}},
-            {"interactions.pairs[]", "per-pair override: the pair and the law parameters to change",
-             pair_override_schema()},
-            {"initial", "initial configuration", initial_schema()},
-            {"engine", "engine and numerical settings", engine_schema()},
-            {"run", "run schedule", run_schema()},
-            {"output", "output settings", output_schema()}};
+    return {
+        {"scene", "top-level keys of a scene file", top_schema()},
+        {"box", "box geometry: give lengths, or packing_fraction (and aspect)", box_schema()},
+        {"species", "one entry per species", species_schema()},
+        {"interactions",
+         "default pair law and its parameters, plus `pairs` overrides (see `gran list laws`)",
+         {text("law", "constant_restitution", "default pair law")}},
+        {"interactions.pairs[]", "per-pair override: the pair and the law parameters to change",
+         pair_override_schema()},
+        {"initial", "initial configuration", initial_schema()},
+        {"engine", "engine and numerical settings", engine_schema()},
+        {"run", "run schedule", run_schema()},
+        {"run.watchdog", "stops runs that hang or produce NaN (on by default)", watchdog_schema()},
+        {"output", "output settings", output_schema()}};
 }
 
 void apply_override(YAML::Node& root, const std::string& assignment) {
@@ -520,7 +544,14 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     if (sc.schedule.measurement / sc.schedule.sample_interval > 1e8) {
         rp.fail("sample_interval", "more than 1e8 samples: increase sample_interval");
     }
+    Params wp = read_params(child(child(root, "run"), "watchdog"), watchdog_schema(),
+                            top.child("run").child("watchdog"));
+    sc.watchdog.enabled = wp.boolean("enabled");
+    sc.watchdog.window = static_cast<std::uint64_t>(wp.integer("window"));
+    sc.watchdog.max_rate_growth = wp.real("max_rate_growth");
+    sc.watchdog.max_events_per_tc = wp.real("max_events_per_tc");
     res["run"] = rp.resolved();
+    res["run"]["watchdog"] = wp.resolved();
 
     // Plugins.
     YAML::Node rd, ro;

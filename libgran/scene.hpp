@@ -12,6 +12,7 @@
 #include "libgran/dem_engine.hpp"
 #include "libgran/event_driven_engine.hpp"
 #include "libgran/params.hpp"
+#include "libgran/watchdog.hpp"
 #include "species/species.hpp"
 
 namespace gran {
@@ -57,6 +58,7 @@ struct Scene {
     std::string engine_type = "event_driven";  // or "dem"
     DemSceneSettings dem;
     Schedule schedule;
+    WatchdogSettings watchdog;  // run.watchdog
     std::vector<PluginEntry> drivers;
     std::vector<PluginEntry> observables;
     std::size_t frames = 0;

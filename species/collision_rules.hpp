@@ -55,11 +55,14 @@ inline double rough_collision(Vec<D>& v1, Vec<D>& v2, AngVec<D>& w1, AngVec<D>& 
     // Eq. (A12) generalised: the tangential effective mass includes both moments of inertia.
     const double inv_mu_t = inv_mu + 1.0 / (q1 * m1) + 1.0 / (q2 * m2);
     const double impulse_n = -(1.0 + alpha) * gn / inv_mu;
-    const Vec<D> p = impulse_n * n - ((1.0 + beta) / inv_mu_t) * gt;
+    const Vec<D> p_t = -((1.0 + beta) / inv_mu_t) * gt;
+    const Vec<D> p = impulse_n * n + p_t;
     v1 += p / m1;
     v2 -= p / m2;
     // Eq. (A4)/(A7): I_i dw_i = -(s_i/2) n x P for both particles (P is the impulse on particle 1).
-    const AngVec<D> torque = cross_n<D>(n, p);
+    // Only the tangential part has a torque (n x n = 0): taking it alone keeps a smooth collision
+    // (beta = -1, p_t = 0) from changing w by the round-off of n x (impulse_n n).
+    const AngVec<D> torque = cross_n<D>(n, p_t);
     w1 -= (2.0 / (q1 * m1 * s1)) * torque;
     w2 -= (2.0 / (q2 * m2 * s2)) * torque;
     return impulse_n;

@@ -299,6 +299,11 @@ int main(int argc, char** argv) {
         const gran::RunReport rep = gran::run_scene(scene, opt);
         print_headline(rep.summary);
         std::cout << fmt::format("result: {}\nsummary: {}\n", rep.output, rep.summary_file);
+        if (!rep.error.empty()) {
+            // The watchdog stopped the run: a failure (exit 1), with what was measured written.
+            std::cerr << "gran: error: " << rep.error << "\n";
+            return 1;
+        }
         if (!rep.completed) {
             spdlog::warn("run did not complete; the result holds the data measured so far");
             return 3;
