@@ -322,7 +322,8 @@ class DemRunner {
         if (steps > kMaxDemSteps) {
             throw SceneError(fmt::format(
                 "{}: dt = {:.4g} would need {:.3g} steps for the run's {:g} time units (more than "
-                "{:g}, years of computing): lower engine.stiffness (or raise engine.contact_time) "
+                "{:g}: months of computing even for one grain): lower engine.stiffness (or raise "
+                "engine.contact_time) "
                 "or shorten the run",
                 sc.engine_location, engine_.dt(), steps,
                 sc.schedule.equilibration + sc.schedule.measurement, kMaxDemSteps));

@@ -71,7 +71,9 @@ run: {measurement: 200, sample_interval: 5}
     for (std::size_t k = 0; k < e.size(); ++k) {
         ASSERT_TRUE(std::isfinite(e[k])) << "sample " << k;
         EXPECT_GT(e[k], 0) << "sample " << k;
-        if (k > 0) EXPECT_LE(e[k], e[k - 1] * (1 + 1e-12)) << "energy rose at sample " << k;
+        if (k > 0) {
+            EXPECT_LE(e[k], e[k - 1] * (1 + 1e-12)) << "energy rose at sample " << k;
+        }
     }
     // 200 collisions per particle at alpha = 1e-3: the gas keeps less than 1% of its energy.
     EXPECT_LT(e.back(), 0.01 * e_start);
