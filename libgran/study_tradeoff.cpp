@@ -70,10 +70,9 @@ std::vector<std::string> default_tradeoff_quantities(const std::vector<std::stri
     for (const auto& q : available) {
         if (q.rfind("observables.", 0) != 0) continue;
         const std::string last = last_component(q);
-        if (!headline.count(last)) continue;
-        // Skip the upper wall of a vibrated bed and the like: a pressure of zero has no relative
-        // deviation; such quantities are dropped later when their reference is zero.
-        out.push_back(q);
+        // A headline quantity whose reference is 0 (the open top of a vibrated bed) is dropped
+        // with a note by analyse_tradeoff: it has no relative deviation.
+        if (headline.count(last)) out.push_back(q);
     }
     return out;
 }

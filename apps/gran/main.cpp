@@ -156,6 +156,50 @@ int cmd_study(const std::string& file, const std::string& out, int jobs, bool qu
     }
 }
 
+// `gran tradeoff`: writes the ladder's study file into the result folder, then runs it.
+int cmd_tradeoff(gran::TradeoffRequest treq, const std::vector<std::string>& knob_ladders,
+                 const std::vector<std::string>& analytic, std::string out, int jobs, bool quiet,
+                 bool dry_run) {
+    std::string file;
+    try {
+        for (const auto& k : knob_ladders) {
+            const auto eq = k.find('=');
+            if (eq == std::string::npos || eq == 0 || eq + 1 >= k.size())
+                throw gran::SceneError("--knob expects KEY=v1,v2,..., got '" + k + "'");
+            std::vector<std::string> levels;
+            std::stringstream ss(k.substr(eq + 1));
+            for (std::string v; std::getline(ss, v, ',');) levels.push_back(v);
+            treq.custom.emplace_back(k.substr(0, eq), levels);
+        }
+        for (const auto& a : analytic) {
+            const auto eq = a.find('=');
+            double v = 0;
+            try {
+                if (eq == std::string::npos || eq == 0) throw std::invalid_argument(a);
+                v = std::stod(a.substr(eq + 1));
+            } catch (const std::exception&) {
+                throw gran::SceneError("--analytic expects QUANTITY=number, got '" + a + "'");
+            }
+            treq.analytic.emplace_back(a.substr(0, eq), v);
+        }
+        const std::string stem = std::filesystem::path(treq.scene).stem().string();
+        if (out.empty()) out = "results/tradeoff-" + stem;
+        const std::string text = gran::tradeoff_study_text(treq, out);
+        std::filesystem::create_directories(out);
+        file = (std::filesystem::path(out) / (stem + ".yaml")).string();
+        std::ofstream(file) << text;
+        std::cout << "study: " << file << "\n";
+        if (dry_run) {
+            std::cout << text;
+            return 0;
+        }
+    } catch (const gran::SceneError& e) {
+        std::cerr << "gran: error: " << e.what() << "\n";
+        return 2;
+    }
+    return cmd_study(file, out, jobs, quiet);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -232,49 +276,8 @@ int main(int argc, char** argv) {
 
     if (study->parsed()) return cmd_study(study_file, study_out, jobs, quiet);
 
-    if (tradeoff->parsed()) {
-        try {
-            for (const auto& k : knob_ladders) {
-                const auto eq = k.find('=');
-                if (eq == std::string::npos || eq + 1 >= k.size())
-                    throw gran::SceneError("--knob expects KEY=v1,v2,..., got '" + k + "'");
-                std::vector<std::string> levels;
-                std::stringstream ss(k.substr(eq + 1));
-                for (std::string v; std::getline(ss, v, ',');) levels.push_back(v);
-                treq.custom.emplace_back(k.substr(0, eq), levels);
-            }
-            for (const auto& a : analytic) {
-                const auto eq = a.find('=');
-                double v = 0;
-                try {
-                    v = std::stod(a.substr(eq + 1));
-                } catch (const std::exception&) {
-                    throw gran::SceneError("--analytic expects QUANTITY=number, got '" + a + "'");
-                }
-                treq.analytic.emplace_back(a.substr(0, eq), v);
-            }
-            if (tout.empty())
-                tout = "results/tradeoff-" + std::filesystem::path(treq.scene).stem().string();
-            std::filesystem::create_directories(tout);
-            const std::string file = (std::filesystem::path(tout) /
-                                      (std::filesystem::path(treq.scene).stem().string() + ".yaml"))
-                                         .string();
-            std::ofstream(file) << gran::tradeoff_study_text(treq, tout);
-            std::cout << "study: " << file << "\n";
-            if (dry_run) {
-                std::ifstream in(file);
-                std::cout << in.rdbuf();
-                return 0;
-            }
-        } catch (const gran::SceneError& e) {
-            std::cerr << "gran: error: " << e.what() << "\n";
-            return 2;
-        }
-        return cmd_study((std::filesystem::path(tout) /
-                          (std::filesystem::path(treq.scene).stem().string() + ".yaml"))
-                             .string(),
-                         tout, jobs, quiet);
-    }
+    if (tradeoff->parsed())
+        return cmd_tradeoff(treq, knob_ladders, analytic, tout, jobs, quiet, dry_run);
 
     try {
         gran::Scene scene = gran::load_scene(scene_file, sets);
