@@ -5,6 +5,7 @@
 
 #include "libgran/event_driven_engine.hpp"
 #include "libgran/placement.hpp"
+#include "tests/support/conservation.hpp"
 
 namespace gran {
 namespace {
@@ -41,23 +42,10 @@ Box<D> cube_for(const SpeciesTable& t, double phi, bool periodic) {
 
 template <int D>
 double kinetic_energy(const Particles<D>& p, const SpeciesTable& t) {
-    double e = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        const auto& s = t.species[p.species[i]];
-        e += 0.5 * s.mass * p.v[i].squaredNorm();
-        if (p.rotating())
-            e += 0.5 * s.inertia_factor * s.mass * s.diameter * s.diameter / 4 *
-                 ang_squared<D>(p.w[i]);
-    }
-    return e;
+    return testing::translational_energy<D>(p, t) + testing::rotational_energy<D>(p, t);
 }
 
-template <int D>
-Vec<D> momentum(const Particles<D>& p, const SpeciesTable& t) {
-    Vec<D> m = Vec<D>::Zero();
-    for (std::size_t i = 0; i < p.size(); ++i) m += t.species[p.species[i]].mass * p.v[i];
-    return m;
-}
+using testing::momentum;
 
 template <int D>
 void check_elastic_conservation(int ns, bool periodic, std::uint64_t collisions, double beta,
@@ -132,7 +120,8 @@ TEST(EventDrivenEngine, SizeRatioFourDenseMixtureConservesEnergyAndNeverOverlaps
     double worst = 1;
     for (std::size_t i = 0; i < q.size(); ++i) {
         for (std::size_t j = i + 1; j < q.size(); ++j) {
-            const double sig = 0.5 * (t.species[q.species[i]].diameter + t.species[q.species[j]].diameter);
+            const double sig =
+                0.5 * (t.species[q.species[i]].diameter + t.species[q.species[j]].diameter);
             worst = std::min(worst, box.separation(q.r[i], q.r[j]).norm() / sig);
         }
     }
