@@ -16,6 +16,7 @@
 //    velocity Verlet is not exactly symplectic here; each contact leaves an error of order
 //    (dt/t_c)^2 = 4e-4 of its pair's energy (~1/8 of the total with 16 grains), of random sign:
 //    a random walk, |dE/E| < 3 x 5e-5 sqrt(contacts) (measured ~1% after 1e8 steps).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -69,7 +70,7 @@ TEST(LongRuns, EventDrivenBillionEventsKeepTimeEnergyAndCostPerEvent) {
         EXPECT_LT(testing::momentum<D>(q, t).norm(), 1e-9 * std::sqrt(2 * e0)) << "chunk " << k;
         EXPECT_GT(testing::closest_approach<D>(q, t, box), 1 - 1e-9) << "chunk " << k;
         RecordProperty("energy_chunk_" + std::to_string(k),
-                       std::to_string(testing::translational_energy<D>(q, t) / e0 - 1));
+                       fmt::format("{:.3e}", testing::translational_energy<D>(q, t) / e0 - 1));
     }
     for (int k = 1; k < 10; ++k) EXPECT_NEAR(freq[k] / freq[0], 1.0, 0.01) << "chunk " << k;
     RecordProperty("frequency_last_over_first", std::to_string(freq.back() / freq.front()));
@@ -112,7 +113,7 @@ TEST(LongRuns, DemHundredMillionStepsKeepTimeEnergyAndCostPerStep) {
                     3 * 5e-5 * std::sqrt(double(engine.counters().contacts)))
             << "chunk " << k;
         RecordProperty("energy_chunk_" + std::to_string(k),
-                       std::to_string(engine.energies().total() / e0 - 1));
+                       fmt::format("{:.3e}", engine.energies().total() / e0 - 1));
     }
     EXPECT_GT(engine.counters().contacts, 10000u) << "too few contacts to test anything";
     EXPECT_NEAR(cost.back() / cost.front(), 1.0, 0.2);
