@@ -17,6 +17,7 @@
 #include "libgran/run.hpp"
 #include "libgran/scene.hpp"
 #include "tests/support/conservation.hpp"
+#include "tests/support/periodic_cube.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {
@@ -40,9 +41,7 @@ TEST(MassRatioExtremes, ElasticMixtureWithMassRatio1000ReachesEquipartition) {
     t.species.push_back(Species{"heavy", 1000.0, 1.0, 0.5, 300});
     t.species.push_back(Species{"light", 1.0, 1.0, 0.5, 300});
     t.pairs.assign(4, PairCoefficients{});
-    Box<D> box;
-    box.length = Vec<D>::Constant(std::sqrt(600 * M_PI / 4 / 0.2));
-    box.periodic.fill(true);
+    const Box<D> box = testing::cube_for<D>(t, 0.2, true);
     Rng rng = make_rng(31, Stream::Placement);
     auto p = place_random<D>(box, t, rng);
     maxwellian_velocities<D>(p, t, 1.0, rng);

@@ -26,6 +26,7 @@
 #include "libgran/event_driven_engine.hpp"
 #include "libgran/placement.hpp"
 #include "tests/support/conservation.hpp"
+#include "tests/support/periodic_cube.hpp"
 
 namespace gran {
 namespace {
@@ -39,9 +40,7 @@ TEST(LongRuns, EventDrivenBillionEventsKeepTimeEnergyAndCostPerEvent) {
     SpeciesTable t;
     t.species.push_back(Species{"a", 1.0, 1.0, 0.5, 100});
     t.pairs.assign(1, PairCoefficients{});
-    Box<D> box;
-    box.length = Vec<D>::Constant(std::sqrt(100 * M_PI / 4 / 0.3));
-    box.periodic.fill(true);
+    const Box<D> box = testing::cube_for<D>(t, 0.3, true);
     Rng rng = make_rng(61, Stream::Placement);
     auto p = place_random<D>(box, t, rng);
     maxwellian_velocities<D>(p, t, 1.0, rng);
@@ -90,9 +89,7 @@ TEST(LongRuns, DemHundredMillionStepsKeepTimeEnergyAndCostPerStep) {
     spec.k_n = 1e4;
     spec.e = 1;
     const DemContactTable table(t, DemLaw::linear_dashpot, spec);
-    Box<D> box;
-    box.length = Vec<D>::Constant(std::sqrt(16 * M_PI / 4 / 0.2));
-    box.periodic.fill(true);
+    const Box<D> box = testing::cube_for<D>(t, 0.2, true);
     Rng rng = make_rng(62, Stream::Placement);
     auto p = place_random<D>(box, t, rng);
     maxwellian_velocities<D>(p, t, 1.0, rng);

@@ -6,6 +6,7 @@
 #include "libgran/event_driven_engine.hpp"
 #include "libgran/placement.hpp"
 #include "tests/support/conservation.hpp"
+#include "tests/support/periodic_cube.hpp"
 
 namespace gran {
 namespace {
@@ -29,16 +30,7 @@ SpeciesTable make_table(int ns, double alpha, double beta, double mass_ratio, st
     return t;
 }
 
-template <int D>
-Box<D> cube_for(const SpeciesTable& t, double phi, bool periodic) {
-    Box<D> box;
-    const double vd = D == 2 ? M_PI / 4 : M_PI / 6;
-    double v = 0;
-    for (const auto& s : t.species) v += double(s.count) * vd * std::pow(s.diameter, D);
-    box.length = Vec<D>::Constant(std::pow(v / phi, 1.0 / D));
-    box.periodic.fill(periodic);
-    return box;
-}
+using testing::cube_for;
 
 template <int D>
 double kinetic_energy(const Particles<D>& p, const SpeciesTable& t) {
