@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+"""Bit-identity of results across refactorings (issue #12).
+
+Runs every scene of tests/regression/scenes/ with the given `gran` binary and compares the result
+with tests/regression/reference/<scene>.h5, which the build *before* the change made (see README.md
+in this folder). Compared bit for bit: every dataset and attribute under /observables and
+/particles, and every dataset under /drivers (wall hits and impulses, injected energy). Not
+compared: /parameters (the resolved scene is written in the new spelling) and /performance
+(timings).
+
+    check_regression.py GRAN_BINARY [--scene NAME] [--keep DIR]
+
+Exit status 0 when every scene matches, 1 otherwise (the first differences are printed).
+"""
+import argparse
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+HERE = pathlib.Path(__file__).resolve().parent
+COMPARED = ("observables", "particles", "drivers")
+
+
+def items(f):
+    """Every dataset and attribute below the compared groups: path -> value."""
+    out = {}
+
+    def visit(name, obj):
+        top = name.split("/")[0]
+        if top not in COMPARED:
+            return
+        if isinstance(obj, h5py.Dataset):
+            out[name] = obj[()]
+        if top == "drivers":
+            return  # driver attributes are descriptions, not results
+        for key, value in obj.attrs.items():
+            out[f"{name}@{key}"] = value
+
+    f.visititems(visit)
+    return out
+
+
+def same(a, b):
+    a, b = np.asarray(a), np.asarray(b)
+    if a.dtype.kind in "OSU" or b.dtype.kind in "OSU":
+        return a.shape == b.shape and all(
+            (x.decode() if isinstance(x, bytes) else x) == (y.decode() if isinstance(y, bytes) else y)
+            for x, y in zip(a.ravel().tolist(), b.ravel().tolist()))
+    return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+def compare(result, reference):
+    with h5py.File(result, "r") as fr, h5py.File(reference, "r") as fref:
+        got, want = items(fr), items(fref)
+    problems = []
+    for key in sorted(set(want) - set(got)):
+        problems.append(f"missing {key}")
+    for key in sorted(set(got) - set(want)):
+        problems.append(f"extra {key}")
+    for key in sorted(set(got) & set(want)):
+        if not same(got[key], want[key]):
+            problems.append(f"differs {key}: {np.ravel(got[key])[:3]} != {np.ravel(want[key])[:3]}")
+    return problems, len(want)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("gran")
+    ap.add_argument("--scene", action="append", help="only these scenes (file stems)")
+    ap.add_argument("--keep", help="write the results here instead of a temporary folder")
+    args = ap.parse_args()
+    scenes = sorted((HERE / "scenes").glob("*.yaml"))
+    if args.scene:
+        scenes = [s for s in scenes if s.stem in args.scene]
+    if not scenes:
+        print("no scenes", file=sys.stderr)
+        return 1
+    failed = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        out = pathlib.Path(args.keep or tmp)
+        out.mkdir(parents=True, exist_ok=True)
+        for scene in scenes:
+            result = out / f"{scene.stem}.h5"
+            run = subprocess.run([args.gran, "run", "-q", str(scene), "-o", str(result)],
+                                 capture_output=True, text=True)
+            if run.returncode != 0:
+                print(f"FAIL {scene.stem}: gran exited {run.returncode}\n{run.stdout}{run.stderr}")
+                failed += 1
+                continue
+            problems, n = compare(result, HERE / "reference" / f"{scene.stem}.h5")
+            if problems:
+                failed += 1
+                print(f"FAIL {scene.stem}: {len(problems)} of {n} items differ")
+                for p in problems[:10]:
+                    print("   ", p)
+            else:
+                print(f"ok   {scene.stem}: {n} items bit-identical")
+    print(f"{len(scenes) - failed} of {len(scenes)} scenes bit-identical")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
