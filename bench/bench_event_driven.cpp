@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "bench/bench_clock.hpp"
-#include "libgran/event_driven_engine.hpp"
-#include "libgran/placement.hpp"
+#include "libgran/engines/event_driven/engine.hpp"
+#include "libgran/scene/placement.hpp"
 
 namespace {
 

@@ -28,10 +28,10 @@
 #include "bench/bench_clock.hpp"
 #include "bench/feature_scenes.hpp"
 #include "bench/minimal_event_driven.hpp"
-#include "libgran/h5.hpp"
-#include "libgran/placement.hpp"
-#include "libgran/run.hpp"
-#include "libgran/scene.hpp"
+#include "libgran/core/h5.hpp"
+#include "libgran/scene/placement.hpp"
+#include "libgran/run/run.hpp"
+#include "libgran/scene/scene.hpp"
 
 namespace {
 

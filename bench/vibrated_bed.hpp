@@ -7,8 +7,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "libgran/dem_engine.hpp"
-#include "libgran/placement.hpp"
+#include "libgran/engines/dem/engine.hpp"
+#include "libgran/scene/placement.hpp"
 
 namespace gran::bench {
 

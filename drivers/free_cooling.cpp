@@ -1,5 +1,5 @@
 // No energy injection: the gas cools freely (Haff's law in the homogeneous regime).
-#include "drivers/driver.hpp"
+#include "libgran/plugins/driver.hpp"
 
 namespace gran {
 namespace {

@@ -16,9 +16,9 @@
 // linearly in time. The correction changes each kick by O(1/N).
 #include <cmath>
 
-#include "drivers/driver.hpp"
-#include "libgran/kinetic_theory.hpp"
-#include "libgran/random.hpp"
+#include "libgran/plugins/driver.hpp"
+#include "libgran/core/kinetic_theory.hpp"
+#include "libgran/core/random.hpp"
 
 namespace gran {
 namespace {

@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "drivers/driver.hpp"
-#include "libgran/random.hpp"
+#include "libgran/plugins/driver.hpp"
+#include "libgran/core/random.hpp"
 #include "species/restitution_params.hpp"
 
 namespace gran {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "observables/blocked_histogram.hpp"
-#include "observables/observable.hpp"
+#include "libgran/plugins/observable.hpp"
 
 namespace gran {
 namespace {

@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "observables/observable.hpp"
+#include "libgran/plugins/observable.hpp"
 
 namespace gran {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "libgran/h5.hpp"
+#include "libgran/core/h5.hpp"
 
 namespace gran {
 

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "observables/observable.hpp"
+#include "libgran/plugins/observable.hpp"
 
 namespace gran {
 namespace {

@@ -3,7 +3,7 @@
 // cumulative collisions per particle at each sample (2 N_coll / N).
 #include <vector>
 
-#include "observables/observable.hpp"
+#include "libgran/plugins/observable.hpp"
 
 namespace gran {
 namespace {

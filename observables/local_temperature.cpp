@@ -35,7 +35,7 @@
 #include <numbers>
 #include <vector>
 
-#include "observables/observable.hpp"
+#include "libgran/plugins/observable.hpp"
 
 namespace gran {
 namespace {

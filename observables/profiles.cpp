@@ -13,8 +13,8 @@
 #include <numbers>
 #include <vector>
 
-#include "libgran/kinetic_theory.hpp"
-#include "observables/observable.hpp"
+#include "libgran/core/kinetic_theory.hpp"
+#include "libgran/plugins/observable.hpp"
 
 namespace gran {
 namespace {

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "observables/observable.hpp"
+#include "libgran/plugins/observable.hpp"
 
 namespace gran {
 namespace {

@@ -9,7 +9,7 @@
 #include <array>
 #include <vector>
 
-#include "observables/observable.hpp"
+#include "libgran/plugins/observable.hpp"
 
 namespace gran {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // Binary collision rules of inelastic hard disks/spheres as plain functions on plain data.
 // n is the unit vector from particle 2 to particle 1 at contact; approaching means (v1 - v2).n < 0.
-#include "libgran/vec.hpp"
+#include "libgran/core/vec.hpp"
 
 namespace gran {
 

@@ -70,7 +70,7 @@
 #include <limits>
 #include <numbers>
 
-#include "libgran/vec.hpp"
+#include "libgran/core/vec.hpp"
 #include "species/collision_rules.hpp"  // cross_w, cross_n
 
 namespace gran {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "libgran/params.hpp"
+#include "libgran/core/params.hpp"
 #include "species/species.hpp"
 
 namespace gran {

@@ -1,7 +1,7 @@
 #pragma once
 // Scene parameters of the impact-speed dependent restitution laws, declared once and shared by
 // the pair laws (species/impact_restitution_laws.cpp) and the walls (drivers/wall_driver.hpp).
-#include "libgran/params.hpp"
+#include "libgran/core/params.hpp"
 #include "species/impact_restitution.hpp"
 
 namespace gran {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "libgran/params.hpp"
+#include "libgran/core/params.hpp"
 #include "species/impact_restitution.hpp"
 
 namespace gran {

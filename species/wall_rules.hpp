@@ -5,8 +5,8 @@
 // the wall (or at rest on it).
 #include <cmath>
 
-#include "libgran/random.hpp"
-#include "libgran/vec.hpp"
+#include "libgran/core/random.hpp"
+#include "libgran/core/vec.hpp"
 #include "species/impact_restitution.hpp"
 
 namespace gran {

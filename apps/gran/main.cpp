@@ -11,12 +11,12 @@
 #include <iostream>
 #include <sstream>
 
-#include "drivers/driver.hpp"
-#include "libgran/run.hpp"
-#include "libgran/scene.hpp"
-#include "libgran/study.hpp"
-#include "libgran/tradeoff_ladder.hpp"
-#include "observables/observable.hpp"
+#include "libgran/plugins/driver.hpp"
+#include "libgran/run/run.hpp"
+#include "libgran/scene/scene.hpp"
+#include "libgran/study/study.hpp"
+#include "libgran/study/tradeoff_ladder.hpp"
+#include "libgran/plugins/observable.hpp"
 #include "species/pair_law.hpp"
 
 namespace {

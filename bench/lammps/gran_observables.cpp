@@ -21,8 +21,8 @@
 #include <string>
 
 #include "bench/vibrated_bed.hpp"
-#include "libgran/dem_engine.hpp"
-#include "libgran/placement.hpp"
+#include "libgran/engines/dem/engine.hpp"
+#include "libgran/scene/placement.hpp"
 
 using namespace gran;
 

@@ -39,7 +39,7 @@ def piston_height(t, amplitude, frequency):
 
     Parabola k is centred on t_k = k/(2f) and lasts |t - t_k| <= t0 = 1/(4f):
     z = s (A/2)((t - t_k)^2/t0^2 - 1), s = +1 for even k (around the lowest point), -1 for odd k;
-    the height is A/2 + z, 0 at t = k/f (as in drivers/wall_motion.hpp)."""
+    the height is A/2 + z, 0 at t = k/f (as in libgran/core/wall_motion.hpp)."""
     k = np.floor(2 * frequency * np.asarray(t) + 0.5)
     dt, t0 = np.asarray(t) - k / (2 * frequency), 1 / (4 * frequency)
     s = np.where(k % 2 == 0, 1.0, -1.0)

@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "libgran/h5.hpp"
+#include "libgran/core/h5.hpp"
 #include "tests/support/run_gran.hpp"
 #include "tests/support/temp_dir_test.hpp"
 

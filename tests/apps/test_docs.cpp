@@ -4,9 +4,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "drivers/driver.hpp"
-#include "libgran/scene.hpp"
-#include "observables/observable.hpp"
+#include "libgran/plugins/driver.hpp"
+#include "libgran/scene/scene.hpp"
+#include "libgran/plugins/observable.hpp"
 #include "species/pair_law.hpp"
 
 namespace gran {

@@ -3,7 +3,7 @@
 // momentum, never overlap, and collide at the Enskog frequency
 //   omega = S n sigma^(d-1) g(sigma) sqrt(T/m)   (S = 2 sqrt(pi) in 2D, 4 sqrt(pi) in 3D)
 // with the Henderson (2D) or Carnahan-Starling (3D) contact value. Tolerance 3%, as for gran's
-// engine (tests/libgran/test_equilibrium_collision_frequency.cpp): the statistical error of 2e5
+// engine (tests/libgran/engines/event_driven/test_equilibrium_collision_frequency.cpp): the statistical error of 2e5
 // collisions is ~0.3% and the contact values are good to <1% at these densities, while a wrong
 // contact distance or missed collisions shift omega by more.
 #include <gtest/gtest.h>
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "bench/minimal_event_driven.hpp"
-#include "libgran/kinetic_theory.hpp"
-#include "libgran/placement.hpp"
+#include "libgran/core/kinetic_theory.hpp"
+#include "libgran/scene/placement.hpp"
 
 namespace gran {
 namespace {

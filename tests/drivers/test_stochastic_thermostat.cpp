@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "libgran/kinetic_theory.hpp"
+#include "libgran/core/kinetic_theory.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {

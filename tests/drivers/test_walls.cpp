@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "drivers/wall_motion.hpp"
+#include "libgran/core/wall_motion.hpp"
 #include "species/wall_rules.hpp"
 #include "tests/support/run_scene.hpp"
 

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <fmt/format.h>
 
-#include "libgran/kinetic_theory.hpp"
+#include "libgran/core/kinetic_theory.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {

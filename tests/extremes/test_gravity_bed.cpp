@@ -20,7 +20,7 @@
 
 #include <cmath>
 
-#include "libgran/h5.hpp"
+#include "libgran/core/h5.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {

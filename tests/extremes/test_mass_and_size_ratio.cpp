@@ -12,10 +12,10 @@
 
 #include <cmath>
 
-#include "libgran/event_driven_engine.hpp"
-#include "libgran/placement.hpp"
-#include "libgran/run.hpp"
-#include "libgran/scene.hpp"
+#include "libgran/engines/event_driven/engine.hpp"
+#include "libgran/scene/placement.hpp"
+#include "libgran/run/run.hpp"
+#include "libgran/scene/scene.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/periodic_cube.hpp"
 #include "tests/support/run_scene.hpp"

@@ -24,11 +24,11 @@
 
 #include <cmath>
 
-#include "libgran/event_driven_engine.hpp"
-#include "libgran/h5.hpp"
-#include "libgran/kinetic_theory.hpp"
-#include "libgran/placement.hpp"
-#include "libgran/run.hpp"
+#include "libgran/engines/event_driven/engine.hpp"
+#include "libgran/core/h5.hpp"
+#include "libgran/core/kinetic_theory.hpp"
+#include "libgran/scene/placement.hpp"
+#include "libgran/run/run.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/contains.hpp"
 #include "tests/support/run_scene.hpp"

@@ -10,9 +10,9 @@
 
 #include <cmath>
 
-#include "libgran/event_driven_engine.hpp"
-#include "libgran/h5.hpp"
-#include "libgran/placement.hpp"
+#include "libgran/engines/event_driven/engine.hpp"
+#include "libgran/core/h5.hpp"
+#include "libgran/scene/placement.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/run_scene.hpp"
 

@@ -14,8 +14,8 @@
 
 #include <cmath>
 
-#include "libgran/h5.hpp"
-#include "libgran/run.hpp"
+#include "libgran/core/h5.hpp"
+#include "libgran/run/run.hpp"
 #include "tests/support/contains.hpp"
 #include "tests/support/run_scene.hpp"
 

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <string>
 
-#include "libgran/h5.hpp"
-#include "libgran/watchdog.hpp"
+#include "libgran/core/h5.hpp"
+#include "libgran/run/watchdog.hpp"
 #include "tests/support/contains.hpp"
 #include "tests/support/run_gran.hpp"
 #include "tests/support/run_scene.hpp"

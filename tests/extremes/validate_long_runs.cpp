@@ -22,9 +22,9 @@
 #include <cmath>
 #include <ctime>
 
-#include "libgran/dem_engine.hpp"
-#include "libgran/event_driven_engine.hpp"
-#include "libgran/placement.hpp"
+#include "libgran/engines/dem/engine.hpp"
+#include "libgran/engines/event_driven/engine.hpp"
+#include "libgran/scene/placement.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/periodic_cube.hpp"
 

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "libgran/h5.hpp"
-#include "libgran/scene_error.hpp"
+#include "libgran/core/h5.hpp"
+#include "libgran/core/scene_error.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <vector>
 
-#include "libgran/h5.hpp"
+#include "libgran/core/h5.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {

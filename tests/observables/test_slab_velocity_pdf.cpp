@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "libgran/h5.hpp"
+#include "libgran/core/h5.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {

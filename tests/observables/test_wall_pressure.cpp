@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "libgran/study_fit.hpp"
+#include "libgran/study/study_fit.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "libgran/box.hpp"
-#include "libgran/particles.hpp"
+#include "libgran/core/box.hpp"
+#include "libgran/core/particles.hpp"
 #include "species/species.hpp"
 
 namespace gran::testing {

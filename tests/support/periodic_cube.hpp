@@ -3,7 +3,7 @@
 // packing fraction phi.
 #include <cmath>
 
-#include "libgran/box.hpp"
+#include "libgran/core/box.hpp"
 #include "species/species.hpp"
 
 namespace gran::testing {

@@ -8,8 +8,8 @@
 #include <map>
 #include <string>
 
-#include "libgran/run.hpp"
-#include "libgran/scene.hpp"
+#include "libgran/run/run.hpp"
+#include "libgran/scene/scene.hpp"
 
 namespace gran::testing {
 

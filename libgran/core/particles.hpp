@@ -1,0 +1,39 @@
+#pragma once
+// Particle state in structure-of-arrays form. Positions are lazy: r[i] is the position at the
+// particle's own clock t[i]; the engine brings a particle up to date only when it takes part in an
+// event (or when observables need positions).
+#include <cstdint>
+#include <vector>
+
+#include "libgran/core/vec.hpp"
+
+namespace gran {
+
+template <int D>
+struct Particles {
+    std::vector<Vec<D>> r;
+    std::vector<Vec<D>> v;
+    std::vector<double> t;
+    std::vector<std::uint32_t> species;
+    std::vector<AngVec<D>> w;  // empty unless some pair law needs rotation
+
+    std::size_t size() const { return r.size(); }
+    bool rotating() const { return !w.empty(); }
+    void resize(std::size_t n, bool with_rotation) {
+        r.assign(n, Vec<D>::Zero());
+        v.assign(n, Vec<D>::Zero());
+        t.assign(n, 0.0);
+        species.assign(n, 0);
+        if (with_rotation) {
+            if constexpr (D == 2) {
+                w.assign(n, 0.0);
+            } else {
+                w.assign(n, AngVec<D>::Zero());
+            }
+        } else {
+            w.clear();
+        }
+    }
+};
+
+}  // namespace gran

@@ -1,0 +1,174 @@
+#pragma once
+// Time-stepped soft-sphere discrete element method (DEM) for disks (D = 2) and spheres (D = 3),
+// the method of Bhateja, Sharma & Singh, Phys. Fluids 28, 043301 (2016), Appendix (issue #5).
+//
+// Equations of motion (A1), (A2): m_i dv_i/dt = sum_j f_ij + m_i g, I_i dw_i/dt = sum_j tau_ij,
+// I_i = q m_i sigma_i^2 / 4, with the contact forces of species/contact_laws.hpp through
+// libgran/dem_contact_table.hpp. Lever arms are the radii (Eq. A3: l = R).
+//
+// Integrator: velocity Verlet for translation and rotation, one step of length dt:
+//   1. half kick    v <- v + (dt/2) a(t),  w <- w + (dt/2) alpha(t)          (v(t + dt/2))
+//      predictor    v* = v + (dt/2) a(t),  w* likewise                         (~ v(t + dt))
+//   2. drift        r <- r + dt v                                             (r(t + dt))
+//      wrap periodic axes; rebuild the neighbour list if a particle moved more than skin / 2
+//   3. forces       F(t + dt): positions r(t + dt); dampers (normal and tangential) evaluated at
+//                   the predicted velocities v*, w* (first-order unbiased restitution and
+//                   duration, contact_laws.hpp notes); tangential springs advanced by g dt with g
+//                   at the half-step velocities that moved the positions (only the in-contact part
+//                   delta / |g_n| of the step when the contact forms)
+//   4. half kick    v <- v + (dt/2) a(t + dt), w likewise.
+// Symplectic (hence bounded energy error) for conservative forces; gravity is integrated exactly.
+//
+// Walls: on bounded axes, a lower and an upper plane, each static or moving along its normal
+// with a WallMotion (fixed, sinusoid, parabolic_piston, sawtooth_ramp). Convention of the
+// event-driven engine: the lower surface is at reach + position(t), the upper at L - reach +
+// position(t), so each excursion stays inside [0, L]. A wall is a contact partner of infinite mass
+// (m_eff = m_i) with the species' wall parameters; the relative velocity uses the wall velocity
+// along the normal (tangential wall velocity 0) and no wall rotation (lever arm 0).
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+#include "libgran/core/wall_motion.hpp"
+#include "libgran/core/box.hpp"
+#include "libgran/engines/dem/contact_table.hpp"
+#include "libgran/engines/dem/neighbour_list.hpp"
+#include "libgran/core/particles.hpp"
+#include "species/species.hpp"
+
+namespace gran {
+
+struct DemSettings {
+    double dt = 0;                           // time step; 0: dt_fraction x shortest t_c
+    double dt_fraction = 1.0 / 50;           // of the shortest contact duration, when dt = 0
+    std::array<double, 3> gravity{0, 0, 0};  // uniform acceleration g (the body force b of A1)
+    double skin = 0.1;                       // Verlet skin in units of the largest diameter
+};
+
+struct DemCounters {
+    std::uint64_t steps = 0;
+    std::uint64_t contacts = 0;         // particle-particle contacts formed
+    std::uint64_t wall_contacts = 0;    // particle-wall contacts formed
+    std::uint64_t active_contacts = 0;  // particle-particle contacts at the last step
+    std::uint64_t rebuilds = 0;         // neighbour-list builds
+    double max_overlap = 0;             // largest delta / sigma_ij seen (a wall: delta / sigma_i)
+};
+
+struct DemEnergies {
+    double translational = 0;  // sum m v^2 / 2
+    double rotational = 0;     // sum I w^2 / 2
+    double elastic = 0;        // normal and tangential springs of the current contacts and walls
+    double gravitational = 0;  // -sum m g.r (meaningless along a periodic axis)
+    double total() const { return translational + rotational + elastic + gravitational; }
+};
+
+template <int D>
+class DemEngine {
+  public:
+    enum class Stop { TimeLimit, Interrupted };
+
+    // Every bounded axis starts with static walls at 0 and L (set_wall, remove_wall change
+    // them). Allocates angular velocities if some contact has friction and `particles` has none.
+    // Throws std::invalid_argument if dt > t_c / 5 (t_c the shortest contact duration of the
+    // table, walls included when the box has a bounded axis), if a cutoff sigma + skin reaches
+    // half a periodic length, or for inconsistent inputs.
+    DemEngine(const Box<D>& box, const SpeciesTable& species, const DemContactTable& contacts,
+              Particles<D> particles, DemSettings settings);
+
+    // Whole steps until now() >= t_limit: the last step is not shortened, so now() ends in
+    // [t_limit, t_limit + dt). Checks *interrupt every 1024 steps.
+    Stop advance(double t_limit, const std::atomic<bool>* interrupt = nullptr);
+    void step();
+
+    double now() const { return t_start_ + double(steps_) * dt_; }
+    double dt() const { return dt_; }
+    const Particles<D>& particles() const { return p_; }
+    const Box<D>& box() const { return box_; }
+    const Vec<D>& gravity() const { return g_; }
+    const DemCounters& counters() const { return counters_; }
+    const DemContactTable& contact_table() const { return table_; }
+    std::size_t species_count() const { return mass_.size(); }
+    double species_mass(std::uint32_t s) const { return mass_[s]; }
+    double species_diameter(std::uint32_t s) const { return 2 * radius_[s]; }
+    double species_inertia(std::uint32_t s) const { return inertia_[s]; }
+    // Contact forces (and torques) of the last evaluation, at now(); gravity not included.
+    const std::vector<Vec<D>>& forces() const { return f_; }
+    const std::vector<AngVec<D>>& torques() const { return tau_; }
+    DemEnergies energies() const;
+    const DemNeighbourList<D>& neighbour_list() const { return list_; }
+    // Contact parameters of a wall (index 2 * axis + side) for species s.
+    const DemContactParams& wall_contact(int code, std::uint32_t s) const {
+        return walls_[std::size_t(code)].params[s];
+    }
+
+    // Walls (side 0: lower, 1: upper) of a bounded axis. Sawtooth motion is refused (it has no
+    // position). restitution in (0, 1]: this wall's e_w (the table's wall spring, friction and
+    // damping, with the dashpot of Eq. A9 for e_w); < 0: the table's wall contact. Throws
+    // std::invalid_argument if that contact is shorter than 5 dt. Forces are re-evaluated at the
+    // current time.
+    void set_wall(int axis, int side, const WallMotion& motion = WallMotion::fixed(),
+                  double restitution = -1);
+    void remove_wall(int axis, int side);
+    bool wall_is_set(int axis, int side) const { return walls_[code(axis, side)].present; }
+    // Surface position of a wall at time t (index 2 * axis + side).
+    double wall_position(int code, double t) const {
+        const Wall& w = walls_[std::size_t(code)];
+        return w.base + w.motion.position(t);
+    }
+    // Normal momentum given by each wall to the particles, sum over steps of F_n dt (= sum of
+    // m |v_n' - v_n| of the event-driven engine for binary collisions).
+    const std::array<double, 2 * D>& wall_impulse() const { return wall_impulse_; }
+    // Contacts formed per wall (index 2 * axis + side).
+    const std::array<std::uint64_t, 2 * D>& wall_hits() const { return wall_hits_; }
+
+  private:
+    struct Wall {
+        bool present = false;
+        WallMotion motion;
+        double base = 0;
+        std::vector<DemContactParams> params;  // per species
+    };
+    static std::size_t code(int axis, int side) { return std::size_t(2 * axis + side); }
+
+    void rebuild();
+    // Forces at the present state with the dampers at the current velocities (construction,
+    // wall changes); springs and wall impulses do not advance.
+    void reevaluate_forces();
+    void compute_forces(double dt_advance);     // zeroes, then accumulates
+    void accumulate_forces(double dt_advance);  // adds to f_, tau_
+    template <DemLaw L, bool Rot>
+    void pair_forces(double dt_advance);
+    template <DemLaw L, bool Rot>
+    void wall_forces(double dt_advance);
+
+    Box<D> box_;
+    DemContactTable table_;
+    Particles<D> p_;
+    DemSettings settings_;
+    DemCounters counters_;
+    Vec<D> g_ = Vec<D>::Zero();
+    double dt_ = 0;
+    double t_start_ = 0;
+    std::uint64_t steps_ = 0;  // since t_start_ (now() = t_start_ + steps_ dt, no accumulation)
+    double skin_ = 0;
+
+    // species, flattened
+    std::vector<double> mass_, radius_, inertia_, inv_mass_, inv_inertia_;
+
+    // per particle
+    std::vector<Vec<D>> f_, v_pred_, disp_;
+    std::vector<AngVec<D>> tau_, w_pred_;
+    std::vector<std::uint8_t> wall_touching_;  // n x 2D
+    std::vector<Vec<D>> wall_spring_;          // n x 2D, history laws only
+
+    DemNeighbourList<D> list_;
+    std::array<Wall, 2 * D> walls_{};
+    std::array<double, 2 * D> wall_impulse_{};
+    std::array<std::uint64_t, 2 * D> wall_hits_{};
+};
+
+extern template class DemEngine<2>;
+extern template class DemEngine<3>;
+
+}  // namespace gran

@@ -1,0 +1,298 @@
+#include "libgran/engines/dem/neighbour_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gran {
+
+template <int D>
+void DemNeighbourList<D>::configure(const Box<D>& box, std::vector<double> cutoff, std::size_t ns,
+                                    std::size_t n_particles, bool history) {
+    history_ = history;
+    ns_ = ns;
+    cutoff2_ = std::move(cutoff);
+    widest_ = 0;
+    for (double& c : cutoff2_) {
+        widest_ = std::max(widest_, c);
+        c *= c;
+    }
+    cap_ = std::max<std::size_t>(std::size_t(1) << 16, 8 * n_particles);
+    min_image_ = false;
+    for (std::size_t a = 0; a < std::size_t(D); ++a) {
+        periodic_[a] = box.periodic[a];
+        length_[a] = box.length[int(a)];
+        ncell_[a] = 1;
+        if (periodic_[a]) {
+            // Clamped before the conversion (a huge box must not overflow the cell count).
+            const double nc = std::min(std::floor(length_[a] / widest_), double(cap_));
+            if (nc >= 3) ncell_[a] = static_cast<std::int32_t>(nc);
+            min_image_ = min_image_ || ncell_[a] == 1;
+        }
+    }
+    // Half stencil: the offsets in {-1, 0, 1}^D whose last non-zero component is +1.
+    int s = 0;
+    for (int code = 0; code < (D == 2 ? 9 : 27); ++code) {
+        std::array<std::int8_t, D> o{};
+        int rest = code;
+        for (std::size_t a = 0; a < std::size_t(D); ++a) {
+            o[a] = static_cast<std::int8_t>(rest % 3 - 1);
+            rest /= 3;
+        }
+        int last = 0;
+        for (std::size_t a = 0; a < std::size_t(D); ++a) {
+            if (o[a] != 0) last = o[a];
+        }
+        if (last == 1) stencil_[std::size_t(s++)] = o;
+    }
+    start.assign(n_particles + 1, 0);
+    partner.clear();
+    owner.clear();
+    touching.clear();
+    spring.clear();
+    cell_start_.clear();
+}
+
+// The cell grid of this build: periodic axes as configured, bounded axes over the occupied range.
+template <int D>
+void DemNeighbourList<D>::grid(const std::vector<Vec<D>>& r) {
+    std::array<double, D> hi{};
+    for (std::size_t a = 0; a < std::size_t(D); ++a) {
+        lo_[a] = periodic_[a] ? 0.0 : kInf;
+        hi[a] = periodic_[a] ? length_[a] : -kInf;
+    }
+    bool bounded = false;
+    for (std::size_t a = 0; a < std::size_t(D); ++a) bounded = bounded || !periodic_[a];
+    if (bounded) {
+        for (const Vec<D>& x : r) {
+            for (std::size_t a = 0; a < std::size_t(D); ++a) {
+                if (periodic_[a]) continue;
+                const double xa = x[int(a)];
+                lo_[a] = xa < lo_[a] ? xa : lo_[a];  // NaN ignored
+                hi[a] = xa > hi[a] ? xa : hi[a];
+            }
+        }
+    }
+    std::array<double, D> span{};
+    for (std::size_t a = 0; a < std::size_t(D); ++a) {
+        if (!periodic_[a]) {
+            if (!(hi[a] >= lo_[a]) || !std::isfinite(hi[a] - lo_[a])) {
+                lo_[a] = 0;  // no finite position: one cell
+                hi[a] = 0;
+            }
+            const double nc = std::min(std::floor((hi[a] - lo_[a]) / widest_), double(cap_));
+            ncell_[a] = std::max<std::int32_t>(1, static_cast<std::int32_t>(nc));
+        }
+        span[a] = hi[a] - lo_[a];
+    }
+    // At most cap_ cells: coarsen the axis with the most cells (periodic ones keep >= 3).
+    for (;;) {
+        std::size_t total = 1;
+        for (std::size_t a = 0; a < std::size_t(D); ++a) total *= std::size_t(ncell_[a]);
+        if (total <= cap_) break;
+        std::size_t a_max = 0;
+        for (std::size_t a = 1; a < std::size_t(D); ++a) {
+            if (ncell_[a] > ncell_[a_max]) a_max = a;
+        }
+        if (ncell_[a_max] <= 3) break;
+        ncell_[a_max] = std::max(ncell_[a_max] / 2, periodic_[a_max] ? 3 : 1);
+    }
+    std::int32_t stride = 1;
+    for (std::size_t a = 0; a < std::size_t(D); ++a) {
+        stride_[a] = stride;
+        stride *= ncell_[a];
+        inv_width_[a] = span[a] > 0 ? ncell_[a] / span[a] : 0.0;
+        const std::int32_t nc = ncell_[a];
+        near_[a].resize(3 * std::size_t(nc));
+        shift_[a].resize(3 * std::size_t(nc));
+        for (std::int32_t c = 0; c < nc; ++c) {
+            for (std::int32_t o = -1; o <= 1; ++o) {
+                const std::size_t k = 3 * std::size_t(c) + std::size_t(o + 1);
+                std::int32_t cn = c + o;
+                double sh = 0;
+                if (nc == 1 && o != 0) {
+                    cn = -1;  // a single cell is its own and only neighbour
+                } else if (cn < 0 || cn >= nc) {
+                    if (periodic_[a]) {
+                        // x_j seen from cell c lies one period away: x_i - x_j -/+ L.
+                        sh = cn < 0 ? length_[a] : -length_[a];
+                        cn = cn < 0 ? cn + nc : cn - nc;
+                    } else {
+                        cn = -1;
+                    }
+                }
+                near_[a][k] = cn;
+                shift_[a][k] = sh;
+            }
+        }
+    }
+    cell_start_.assign(std::size_t(stride) + 1, 0u);
+}
+
+// Counting sort of the particles by cell (stable: increasing index within a cell); positions
+// and species are copied in cell order for the pair search.
+template <int D>
+void DemNeighbourList<D>::bin(const std::vector<Vec<D>>& r,
+                              const std::vector<std::uint32_t>& species) {
+    const std::size_t n = r.size();
+    cell_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint32_t id = 0;
+        for (std::size_t a = 0; a < std::size_t(D); ++a) {
+            double f = std::floor((r[i][int(a)] - lo_[a]) * inv_width_[a]);
+            const double top = ncell_[a] - 1;
+            if (!(f >= 0)) f = 0;  // also NaN
+            if (f > top) f = top;
+            id += static_cast<std::uint32_t>(f) * std::uint32_t(stride_[a]);
+        }
+        cell_[i] = id;
+        ++cell_start_[id];
+    }
+    // Inclusive prefix sums: cell_start_[c] is the end of cell c; filled from the back, it ends
+    // at the beginning of cell c.
+    const std::size_t cells = cell_start_.size() - 1;
+    for (std::size_t c = 1; c < cells; ++c) cell_start_[c] += cell_start_[c - 1];
+    cell_start_[cells] = std::uint32_t(n);
+    order_.resize(n);
+    xs_.resize(n);
+    ss_.resize(n);
+    for (std::size_t i = n; i-- > 0;) {
+        const std::uint32_t slot = --cell_start_[cell_[i]];
+        order_[slot] = std::uint32_t(i);
+        xs_[slot] = r[i];
+        ss_[slot] = species[i];
+    }
+}
+
+template <int D>
+template <bool MinImage>
+void DemNeighbourList<D>::find_pairs(const Box<D>& box) {
+    std::array<bool, D> single{};  // periodic axes of one cell: minimum image per pair
+    for (std::size_t a = 0; a < std::size_t(D); ++a) single[a] = periodic_[a] && ncell_[a] == 1;
+    const auto wrap = [&](Vec<D>& d) {
+        if constexpr (MinImage) {
+            for (std::size_t a = 0; a < std::size_t(D); ++a) {
+                if (!single[a]) continue;
+                const double L = length_[a];
+                if (d[int(a)] > 0.5 * L) {
+                    d[int(a)] -= L;
+                } else if (d[int(a)] < -0.5 * L) {
+                    d[int(a)] += L;
+                }
+            }
+        }
+    };
+    (void)box;
+    const std::uint32_t* cs = cell_start_.data();
+    const Vec<D>* xs = xs_.data();
+    const std::uint32_t* ss = ss_.data();
+    const std::uint32_t* order = order_.data();
+    const double* cut2 = cutoff2_.data();
+    const std::size_t ns = ns_;
+    const auto push = [&](std::uint32_t a, std::uint32_t b) {
+        const std::uint64_t i = order[a], j = order[b];
+        pairs_.push_back(i < j ? (i << 32 | j) : (j << 32 | i));
+    };
+    pairs_.clear();
+    const std::size_t cells = cell_start_.size() - 1;
+    std::array<std::int32_t, D> q{};  // coordinates of cell c
+    for (std::size_t c = 0; c < cells; ++c) {
+        if (c != 0) {
+            for (std::size_t a = 0; a < std::size_t(D); ++a) {
+                if (++q[a] < ncell_[a]) break;
+                q[a] = 0;
+            }
+        }
+        const std::uint32_t b0 = cs[c], b1 = cs[c + 1];
+        if (b0 == b1) continue;
+        for (std::uint32_t a = b0; a < b1; ++a) {
+            const Vec<D> xa = xs[a];
+            const double* cut = cut2 + ss[a] * ns;
+            for (std::uint32_t b = a + 1; b < b1; ++b) {
+                Vec<D> d = xa - xs[b];
+                wrap(d);
+                if (d.squaredNorm() < cut[ss[b]]) push(a, b);
+            }
+        }
+        for (const auto& o : stencil_) {
+            std::int32_t nc = 0;
+            Vec<D> sh;
+            bool valid = true;
+            for (std::size_t a = 0; a < std::size_t(D); ++a) {
+                const std::size_t k = 3 * std::size_t(q[a]) + std::size_t(o[a] + 1);
+                const std::int32_t cn = near_[a][k];
+                if (cn < 0) {
+                    valid = false;
+                    break;
+                }
+                nc += cn * stride_[a];
+                sh[int(a)] = shift_[a][k];
+            }
+            if (!valid) continue;
+            const std::uint32_t e0 = cs[nc], e1 = cs[nc + 1];
+            if (e0 == e1) continue;
+            for (std::uint32_t a = b0; a < b1; ++a) {
+                const Vec<D> xa = xs[a] + sh;
+                const double* cut = cut2 + ss[a] * ns;
+                for (std::uint32_t b = e0; b < e1; ++b) {
+                    Vec<D> d = xa - xs[b];
+                    wrap(d);
+                    if (d.squaredNorm() < cut[ss[b]]) push(a, b);
+                }
+            }
+        }
+    }
+}
+
+template <int D>
+void DemNeighbourList<D>::build(const Box<D>& box, const std::vector<Vec<D>>& r,
+                                const std::vector<std::uint32_t>& species) {
+    const std::size_t n = r.size();
+    // The pairs in contact (and their springs), to carry over.
+    carried_.clear();
+    if (start.size() == n + 1) {
+        for (std::size_t i = 0; i < n; ++i) {
+            for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
+                if (!touching[k]) continue;
+                carried_.push_back(
+                    {std::uint32_t(i), partner[k], history_ ? spring[k] : Vec<D>(Vec<D>::Zero())});
+            }
+        }
+    }
+
+    grid(r);
+    bin(r, species);
+    if (min_image_) {
+        find_pairs<true>(box);
+    } else {
+        find_pairs<false>(box);
+    }
+
+    // Compressed rows by the lower index: counts, inclusive prefix sums, filled from the back.
+    start.assign(n + 1, 0u);
+    for (std::uint64_t p : pairs_) ++start[std::size_t(p >> 32)];
+    for (std::size_t i = 1; i < n; ++i) start[i] += start[i - 1];
+    start[n] = std::uint32_t(pairs_.size());
+    partner.resize(pairs_.size());
+    for (std::uint64_t p : pairs_) {
+        partner[--start[std::size_t(p >> 32)]] = std::uint32_t(p);
+    }
+    owner.resize(partner.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        std::fill(owner.begin() + start[i], owner.begin() + start[i + 1], std::uint32_t(i));
+    }
+    touching.assign(partner.size(), 0);
+    if (history_) spring.assign(partner.size(), Vec<D>::Zero());
+    for (const Carried& c : carried_) {
+        for (std::uint32_t k = start[c.i]; k < start[c.i + 1]; ++k) {
+            if (partner[k] != c.j) continue;
+            touching[k] = 1;
+            if (history_) spring[k] = c.spring;
+            break;
+        }
+    }
+}
+
+template class DemNeighbourList<2>;
+template class DemNeighbourList<3>;
+
+}  // namespace gran

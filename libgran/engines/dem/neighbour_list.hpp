@@ -1,0 +1,90 @@
+#pragma once
+// Verlet neighbour list with a skin for the DEM engine, built through a cell list.
+//
+//  - Half list in compressed rows: the partners j > i of particle i are partner[start[i]] ..
+//    partner[start[i + 1] - 1] (in no particular order), for every pair closer than its cutoff
+//    sigma_ij + skin (minimum image on periodic axes).
+//  - Build: the particles are binned once per build (one cell index per particle, counting sort,
+//    positions and species copied in cell order), then every non-empty cell is paired with itself
+//    and with the 13 (3D; 4 in 2D) cells of a half stencil, through per-axis neighbour tables that
+//    wrap periodic axes and carry the image shift, so every pair of adjacent cells is visited once
+//    and no separation needs a minimum-image test.
+//  - Cells at least one largest cutoff wide. Periodic axes with fewer than 3 cells use a single
+//    cell (those pairs take the minimum-image separation, which the caller keeps unique by
+//    requiring cutoffs below half the box length). Bounded axes are binned over the range the
+//    particles occupy at the build (a tall, open box costs no empty cells); the grid is coarsened
+//    to at most ~8 cells per particle.
+//  - Each entry carries the contact state of the pair (touching at the last force evaluation)
+//    and, when `history` is on, its tangential spring. Only the entries in contact are carried
+//    over to the next build (a pair in contact is closer than sigma_ij, hence in the new list).
+//  - No allocation in steady state: every buffer keeps its capacity across builds.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "libgran/core/box.hpp"
+#include "libgran/core/vec.hpp"
+
+namespace gran {
+
+template <int D>
+class DemNeighbourList {
+  public:
+    // cutoff: ns x ns pair cutoffs sigma_ij + skin. history: keep tangential springs per entry.
+    void configure(const Box<D>& box, std::vector<double> cutoff, std::size_t ns,
+                   std::size_t n_particles, bool history);
+    void build(const Box<D>& box, const std::vector<Vec<D>>& r,
+               const std::vector<std::uint32_t>& species);
+
+    std::size_t entries() const { return partner.size(); }
+    std::size_t cells() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
+
+    std::vector<std::uint32_t> start;    // n + 1 row offsets
+    std::vector<std::uint32_t> partner;  // j > i
+    std::vector<std::uint32_t> owner;    // i of each entry (the row it belongs to)
+    std::vector<std::uint8_t> touching;  // 1: in contact at the last force evaluation
+    std::vector<Vec<D>> spring;          // tangential spring xi (history laws only)
+
+  private:
+    static constexpr int kStencil = D == 2 ? 4 : 13;  // half of the 3^D - 1 neighbour offsets
+    struct Carried {
+        std::uint32_t i, j;
+        Vec<D> spring;
+    };
+
+    void grid(const std::vector<Vec<D>>& r);
+    void bin(const std::vector<Vec<D>>& r, const std::vector<std::uint32_t>& species);
+    template <bool MinImage>
+    void find_pairs(const Box<D>& box);
+
+    bool history_ = false;
+    std::size_t ns_ = 0;
+    double widest_ = 0;
+    std::size_t cap_ = 0;          // most cells
+    std::vector<double> cutoff2_;  // ns x ns
+    std::array<bool, D> periodic_{};
+    std::array<double, D> length_{};
+    std::array<std::int32_t, D> ncell_{};
+    std::array<std::int32_t, D> stride_{};
+    std::array<double, D> lo_{}, inv_width_{};
+    bool min_image_ = false;  // a periodic axis has a single cell
+    std::array<std::array<std::int8_t, D>, kStencil> stencil_{};
+    // Per axis, 3 entries per cell coordinate (offsets -1, 0, 1): the neighbour's coordinate
+    // (-1: none) and the shift added to x_i - x_j (the periodic image).
+    std::array<std::vector<std::int32_t>, D> near_;
+    std::array<std::vector<double>, D> shift_;
+
+    std::vector<std::uint32_t> cell_;        // per particle
+    std::vector<std::uint32_t> cell_start_;  // cells + 1
+    std::vector<std::uint32_t> order_;       // slot (cell order) -> particle
+    std::vector<Vec<D>> xs_;                 // positions by slot
+    std::vector<std::uint32_t> ss_;          // species by slot
+    std::vector<std::uint64_t> pairs_;       // (i << 32 | j), i < j, in cell order
+    std::vector<Carried> carried_;
+};
+
+extern template class DemNeighbourList<2>;
+extern template class DemNeighbourList<3>;
+
+}  // namespace gran

@@ -1,0 +1,252 @@
+#pragma once
+// Event-driven molecular dynamics of inelastic hard disks (D = 2) and spheres (D = 3), one
+// templated code path. Design (see docs/architecture.md):
+//  - structure-of-arrays particle state with per-particle clocks (lazy position updates);
+//  - cell list (cells at least one largest diameter wide) with cell-crossing events; after a
+//    crossing only the newly adjacent layer of cells is scanned (the earlier best collision is
+//    kept);
+//  - one pending event per particle, validated lazily with per-particle collision counters;
+//  - indexed 4-ary heap keyed by particle (O(log N) per event), no allocation per event;
+//  - neighbour cells computed from cell coordinates (a per-cell table falls out of cache at 1e5);
+//  - round-off-proof detection: an approaching pair that already overlaps collides now, a receding
+//    one is ignored, and no event is ever scheduled before the current time;
+//  - the TC model against inelastic collapse (Luding & McNamara, Granular Matter 1, 113 (1998)):
+//    a collision within tc of a previous collision of either partner is elastic. Counted.
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "libgran/core/wall_motion.hpp"
+#include "libgran/core/box.hpp"
+#include "libgran/core/collision_record.hpp"
+#include "libgran/engines/event_driven/event_queue.hpp"
+#include "libgran/core/particles.hpp"
+#include "species/collision_rules.hpp"
+#include "species/impact_restitution.hpp"
+#include "species/species.hpp"
+#include "species/wall_rules.hpp"
+
+namespace gran {
+
+struct EngineSettings {
+    bool tc_guard = true;                    // TC model on by default
+    double tc = 1e-6;                        // [time]
+    std::array<double, 3> gravity{0, 0, 0};  // uniform acceleration [length/time^2]
+};
+
+struct EngineCounters {
+    std::uint64_t events = 0;
+    std::uint64_t collisions = 0;
+    std::uint64_t cell_crossings = 0;
+    std::uint64_t wall_hits = 0;
+    std::uint64_t stale_events = 0;   // invalidated predictions popped and recomputed
+    std::uint64_t tc_collisions = 0;  // collisions made elastic by the TC guard
+    std::uint64_t overlap_collisions =
+        0;  // approaching pairs found overlapping (round-off) and collided at once
+    std::uint64_t full_reschedules = 0;  // all events recomputed (e.g. after thermostat kicks)
+    std::uint64_t full_rescans_after_crossing = 0;  // crossings whose kept collision went stale
+    std::uint64_t sorts = 0;                        // re-sorts of the particle storage by cell
+    std::uint64_t tc_wall_hits = 0;                 // wall hits made elastic by the TC guard
+    std::uint64_t wall_lifts = 0;  // hits whose rebound was raised to the resting speed g tc
+};
+
+// Collision time of two spheres at separation dr, relative velocity dv, contact distance sigma.
+// Returns 0 for an approaching overlapping pair (round-off) and +inf for receding or missing pairs,
+// or for pairs that cannot collide before `bound`. Stable root: dt = c / (-b + sqrt(b^2 - dv^2 c))
+// avoids cancellation; since that root is >= c / (-2b), pairs beyond the bound are rejected
+// before the square root (the common case in a neighbour scan).
+template <int D>
+inline double pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sigma,
+                                  double bound = kInf) {
+    const double b = dr.dot(dv);
+    if (b >= 0.0) return kInf;
+    const double c = dr.squaredNorm() - sigma * sigma;
+    if (c <= 0.0) return 0.0;
+    if (c > -2.0 * b * bound) return kInf;
+    const double disc = b * b - dv.squaredNorm() * c;
+    if (disc <= 0.0) return kInf;
+    return c / (-b + std::sqrt(disc));
+}
+
+template <int D>
+class EventDrivenEngine {
+  public:
+    enum class Stop { TimeLimit, CollisionLimit, Interrupted, NoEvents, EventLimit };
+
+    EventDrivenEngine(const Box<D>& box, const SpeciesTable& table, Particles<D> particles,
+                      EngineSettings settings);
+
+    // Processes events up to time t_limit; stops early once the total collision count reaches
+    // collision_limit, once the total event count reaches event_limit (the run's watchdog checks
+    // progress between such chunks), or when *interrupt becomes true (checked every 1024 events).
+    Stop advance(double t_limit, std::uint64_t collision_limit,
+                 const std::atomic<bool>* interrupt = nullptr,
+                 std::uint64_t event_limit = UINT64_MAX);
+
+    double now() const { return limit_now_ == kNoLimit ? t_origin_ + now_ : limit_now_; }
+    const Particles<D>& particles() const { return p_; }
+    const Box<D>& box() const { return box_; }
+    double species_mass(std::uint32_t s) const { return mass_[s]; }
+    double species_diameter(std::uint32_t s) const { return diameter_[s]; }
+    double species_inertia(std::uint32_t s) const {
+        return inertia_[s] * mass_[s] * diameter_[s] * diameter_[s] / 4;
+    }
+    std::size_t species_count() const { return ns_; }
+    const EngineCounters& counters() const { return counters_; }
+    // Collisions per unordered species pair, index min(a,b) * ns + max(a,b).
+    const std::vector<std::uint64_t>& pair_collisions() const { return pair_collisions_; }
+
+    // Brings every particle to the current time (positions exact at now()).
+    void synchronize();
+    // Velocity access for drivers: call synchronize() first, change velocities, then
+    // velocities_changed() to invalidate and recompute every pending event.
+    Particles<D>& particles_for_update() { return p_; }
+    void velocities_changed();
+    // Particles are stored in cell order and re-sorted now and then (memory locality), so the
+    // storage index of a particle changes; ids()[k] is the original index (placement order) of the
+    // particle stored at k. Collision records carry original ids.
+    const std::vector<std::uint32_t>& ids() const { return id_; }
+
+    void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
+
+    // Particle-wall rule of one wall of a bounded axis (side 0: lower, 1: upper); the default is a
+    // static elastic wall. Wall drivers install theirs; `rng` must outlive the engine. u is the
+    // wall's velocity along the axis at the hit. A moving wall's surface is at
+    // base + motion.position(t) with base = motion.reach() for the lower wall and
+    // L - motion.reach() for the upper one: its whole excursion lies inside the box.
+    using WallRule = void (*)(Vec<D>& v, int axis, double inward, double u,
+                              const WallParams& params, Rng& rng, double mass);
+    void set_wall(int axis, int side, WallRule rule, const WallParams& params, Rng* rng,
+                  const WallMotion& motion = WallMotion::fixed());
+    // Surface position of a wall at time t (index 2 * axis + side).
+    double wall_position(int code, double t) const {
+        return walls_[std::size_t(code)].base + walls_[std::size_t(code)].motion.position(t);
+    }
+    // Momentum given to each wall, sum of m |v_n' - v_n| over its hits (index 2 * axis + side).
+    const std::array<double, 2 * D>& wall_impulse() const { return wall_impulse_; }
+    const Vec<D>& gravity() const { return g_; }
+    bool wall_is_set(int axis, int side) const {
+        return walls_[std::size_t(2 * axis + side)].rule != nullptr;
+    }
+    // Hits per wall (index 2 * axis + side).
+    const std::array<std::uint64_t, 2 * D>& wall_hits() const { return wall_hit_count_; }
+
+  private:
+    enum Kind : std::uint8_t { kNone, kCollision, kCell, kWall };
+
+    void move(std::uint32_t i) {
+        const double dt = now_ - p_.t[i];
+        if (gravity_) {
+            // Parabolic free flight (uniform gravity).
+            p_.r[i] += dt * (p_.v[i] + (0.5 * dt) * g_);
+            p_.v[i] += dt * g_;
+        } else {
+            p_.r[i] += p_.v[i] * dt;
+        }
+        p_.t[i] = now_;
+    }
+    void predict(std::uint32_t i);
+    void predict_after_crossing(std::uint32_t i, int axis, int dir);
+    // Writes up to 3^D cell ids to out (room for 3^D needed), returns how many are neighbours.
+    int neighbour_cells(std::uint32_t i, std::int32_t* out, int layer_axis = -1,
+                        int layer_dir = 0) const;
+    void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
+                    std::int32_t& partner) const;
+    template <bool Gravity>
+    void scan_gathered(std::uint32_t i, std::size_t n, double& best, std::int32_t& partner) const;
+    // Periodic axes with one cell (shorter than 4 largest diameters): the minimum image is not
+    // enough, a pair may meet through another image before either particle re-predicts (at its
+    // next wrap, after travelling at most one period). The scan then tries the images k L,
+    // |k| <= 2, along those axes (image_offsets_, empty when no axis needs them).
+    void scan_gathered_images(std::uint32_t i, std::size_t n, double& best,
+                              std::int32_t& partner) const;
+    std::vector<Vec<D>> image_offsets_;
+    double axis_event(std::uint32_t i, int a, double best, std::uint8_t& kind, int& code) const;
+    void schedule(std::uint32_t i, double collision, std::int32_t partner);
+    void collide(std::uint32_t i, std::uint32_t j);
+    void cross_cell(std::uint32_t i, int code);
+    void hit_wall(std::uint32_t i, int code);
+    void build_cells();
+    void cell_insert(std::uint32_t i, std::int32_t c);
+    void cell_remove(std::uint32_t i);
+    std::int32_t cell_id(const std::array<std::int32_t, D>& cc) const;
+
+    Box<D> box_;
+    Particles<D> p_;
+    EngineSettings settings_;
+    EngineCounters counters_;
+    double now_ = 0;       // relative to t_origin_
+    double t_origin_ = 0;  // absolute time of the internal origin (moved by rebase_time())
+    static constexpr double kNoLimit = -1.0;
+    double limit_now_ = kNoLimit;  // after a time-limit stop: the limit, reported exactly
+    void rebase_time();
+
+    // species tables, flattened
+    std::size_t ns_ = 0;
+    std::vector<double> mass_, diameter_, inertia_;
+    std::vector<double> sigma_pair_, alpha_pair_, beta_pair_;
+    std::vector<ImpactRestitution> restitution_pair_;
+    bool impact_dependent_ = false;  // some pair law depends on the impact speed
+    bool rough_ = false;
+    Vec<D> g_ = Vec<D>::Zero();
+    bool gravity_ = false;
+
+    // per particle
+    std::vector<std::uint32_t> count_;  // collision counter (velocity changes)
+    std::vector<double> last_collision_;
+    std::vector<double> ev_time_;
+    std::vector<std::int32_t> ev_partner_;
+    std::vector<std::uint32_t> ev_count_;     // collision partner's counter when predicted
+    std::vector<double> coll_time_;           // earliest predicted collision (absolute time)
+    std::vector<std::int32_t> coll_partner_;  // its partner (-1: none), kept across cell crossings
+    std::vector<std::uint8_t> ev_kind_;
+    EventQueue queue_;
+
+    // cell list
+    std::array<std::int32_t, D> ncell_{};
+    Vec<D> cell_width_;
+    std::vector<std::array<std::int32_t, D>> cc_;
+    // Cell contents, two layouts chosen by occupancy in build_cells():
+    //  - dense (>= 0.25 particles per cell): fixed-capacity slots of ids plus a count per cell. A
+    //    scan gathers the ids of all neighbouring cells without branches (whole slots are copied,
+    //    the write position advances by the count), so the unpredictable "how many particles in
+    //    this cell" branch is not paid per cell (+18% at phi 0.2-0.3 in 3D);
+    //  - dilute: doubly linked lists (a few bytes per mostly empty cell; slots cost -30 to -45% at
+    //    N = 1e5, phi = 0.1, through cache misses).
+    void grow_cells();
+    bool slots_ = false;
+    std::vector<std::int32_t> cell_of_, slot_, cell_count_;
+    std::vector<std::uint32_t> cell_ids_;
+    std::int32_t cell_capacity_ = 0;
+    std::vector<std::int32_t> next_, prev_, head_;
+    mutable std::vector<std::uint32_t> gather_;  // candidates of one scan
+
+    std::vector<std::uint64_t> pair_collisions_;
+    CollisionSink<D>* sink_ = nullptr;
+
+    struct WallSlot {
+        WallRule rule = nullptr;
+        WallParams params;
+        Rng* rng = nullptr;
+        WallMotion motion;
+        double base = 0;     // surface position at zero displacement
+        int layers = 1;      // cell layers (from this wall) whose particles can reach it
+        bool simple = true;  // static and no gravity along the axis: the linear fast path
+    };
+    std::array<WallSlot, 2 * D> walls_{};
+    std::array<std::uint64_t, 2 * D> wall_hit_count_{};
+    std::array<double, 2 * D> wall_impulse_{};
+
+    void sort_by_cell();
+    std::vector<std::uint32_t> id_;
+    std::uint64_t events_since_sort_ = 0;
+    std::uint64_t sort_every_ = 0;  // events between re-sorts (a few sweeps of N)
+};
+
+extern template class EventDrivenEngine<2>;
+extern template class EventDrivenEngine<3>;
+
+}  // namespace gran

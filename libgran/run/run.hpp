@@ -1,0 +1,35 @@
+#pragma once
+// Running a scene: build the initial state, equilibrate, measure, write the HDF5 result and the
+// human-readable summary. Interruptible (SIGINT/SIGTERM): what was measured so far is written.
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "libgran/scene/scene.hpp"
+
+namespace gran {
+
+struct RunOptions {
+    std::string output;  // result file (.h5); the summary goes beside it (.summary.yaml)
+    bool progress = true;
+    bool terminal = false;  // redraw a progress line (stderr is a terminal)
+    std::vector<std::string> command_line;
+    const std::atomic<bool>* interrupt = nullptr;
+};
+
+struct RunReport {
+    bool completed = false;  // false when interrupted or stopped
+    std::string error;       // non-empty: the watchdog stopped the run (what, when, what to change)
+    std::string output;
+    std::string summary_file;
+    YAML::Node summary;
+};
+
+// Everything short of running: places the particles (throws SceneError naming the box on
+// failure) and builds every driver and observable (whose constructors check cross-references such
+// as species names). `gran check` uses it to refuse impossible scenes before running.
+void check_scene(const Scene& scene);
+
+RunReport run_scene(const Scene& scene, const RunOptions& options);
+
+}  // namespace gran

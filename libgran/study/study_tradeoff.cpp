@@ -1,0 +1,415 @@
+#include "libgran/study/study_tradeoff.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <set>
+
+namespace gran {
+
+std::vector<bool> pareto_front(std::span<const double> cost, std::span<const double> error) {
+    const std::size_t n = cost.size();
+    std::vector<bool> front(n, false);
+    std::vector<std::size_t> idx;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (std::isfinite(cost[i]) && std::isfinite(error[i])) idx.push_back(i);
+    }
+    // Cheapest first (ties: smallest error first); a point is on the front when its error is below
+    // that of every cheaper point. Equal points are all on the front (none dominates the other).
+    std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+        return cost[a] != cost[b] ? cost[a] < cost[b] : error[a] < error[b];
+    });
+    double best = std::numeric_limits<double>::infinity();
+    double best_cost = -1;
+    for (std::size_t k : idx) {
+        if (error[k] < best || (error[k] == best && cost[k] == best_cost)) {
+            front[k] = true;
+            best = error[k];
+            best_cost = cost[k];
+        }
+    }
+    return front;
+}
+
+namespace {
+
+std::string last_component(const std::string& q) {
+    const auto cut = q.find_last_of("./");
+    return cut == std::string::npos ? q : q.substr(cut + 1);
+}
+
+std::string metadata_text(const StudyRun& run, const char* key) {
+    const YAML::Node n = run.metadata[key];
+    if (!n || !n.IsScalar()) return "";
+    return n.Scalar();
+}
+
+}  // namespace
+
+std::vector<std::string> default_tradeoff_quantities(const std::vector<std::string>& available) {
+    // Headline quantities of the observables (docs/scene-reference.md): the temperature ratio,
+    // the (mixture) temperature, the Sonine coefficient, pressures, and the vibrated bed's scaled
+    // temperatures. Per-component and per-species variants are left to an explicit list.
+    static const std::set<std::string> headline{"gamma",
+                                                "T_mixture",
+                                                "a2_mixture",
+                                                "pressure",
+                                                "T_volume_scaled",
+                                                "T_plain_scaled",
+                                                "T_z_volume_scaled",
+                                                "T_z_plain_scaled",
+                                                "T_y_volume_scaled",
+                                                "T_y_plain_scaled",
+                                                "h_cm",
+                                                "pdf_distance"};
+    std::vector<std::string> out;
+    for (const auto& q : available) {
+        if (q.rfind("observables.", 0) != 0) continue;
+        const std::string last = last_component(q);
+        // A headline quantity whose reference is 0 (the open top of a vibrated bed) is dropped
+        // with a note by analyse_tradeoff: it has no relative deviation.
+        if (headline.count(last)) out.push_back(q);
+    }
+    return out;
+}
+
+namespace {
+
+constexpr const char* kPdfDistance = "observables.velocity_pdf.pdf_distance";
+
+bool is_distance(const std::string& q) {
+    return last_component(q) == "pdf_distance";
+}
+
+struct Pdf {
+    std::vector<double> density, error, edges;
+};
+
+// Every rescaled component PDF of a run, keyed "<species>/<component>"; empty without the
+// observable.
+std::map<std::string, Pdf> read_pdfs(const std::string& file, const std::string& scene_text) {
+    std::map<std::string, Pdf> out;
+    try {
+        const YAML::Node scene = YAML::Load(scene_text);
+        const int dim = scene["dimension"].as<int>();
+        h5::File f = h5::File::open_read(file);
+        const h5::Group root = f.root();
+        if (!root.exists("observables/velocity_pdf")) return out;
+        for (const auto& sp : scene["species"]) {
+            for (int a = 0; a < dim; ++a) {
+                const std::string key =
+                    sp["name"].as<std::string>() + "/" + std::string(1, "xyz"[a]);
+                const std::string base = "observables/velocity_pdf/" + key + "/scaled_";
+                if (!root.exists(base + "density")) continue;
+                out[key] = {root.read_doubles(base + "density"), root.read_doubles(base + "error"),
+                            root.read_doubles(base + "edges")};
+            }
+        }
+    } catch (const std::exception&) {
+        out.clear();
+    }
+    return out;
+}
+
+}  // namespace
+
+void add_pdf_distances(const Study& st, const std::vector<std::string>& outputs,
+                       std::vector<Row>& rows, const std::vector<bool>& have,
+                       std::vector<std::string>& quantities) {
+    std::size_t ref = st.runs.size();
+    for (std::size_t i = 0; i < st.runs.size() && ref == st.runs.size(); ++i) {
+        if (have[i] && st.runs[i].point == st.tradeoff.reference) ref = i;
+    }
+    if (ref == st.runs.size()) return;
+    const auto ref_pdfs = read_pdfs(outputs[ref], st.runs[ref].resolved_scene);
+    if (ref_pdfs.empty()) return;
+    bool any = false;
+    for (std::size_t i = 0; i < st.runs.size(); ++i) {
+        if (!have[i]) continue;
+        const auto pdfs = i == ref ? ref_pdfs : read_pdfs(outputs[i], st.runs[i].resolved_scene);
+        double d_sum = 0, e_sum = 0;
+        int n = 0;
+        for (const auto& [key, p] : pdfs) {
+            auto it = ref_pdfs.find(key);
+            if (it == ref_pdfs.end()) continue;
+            const Pdf& r = it->second;
+            // Only histograms on the same bins compare bin by bin.
+            if (r.edges != p.edges || p.density.size() + 1 != p.edges.size()) continue;
+            double d = 0, e = 0;
+            for (std::size_t b = 0; b < p.density.size(); ++b) {
+                const double dc = p.edges[b + 1] - p.edges[b];
+                d += 0.5 * std::abs(p.density[b] - r.density[b]) * dc;
+                const double var =
+                    p.error[b] * p.error[b] + (i == ref ? 0.0 : r.error[b] * r.error[b]);
+                e += 0.5 * dc * std::sqrt(2 / M_PI) * std::sqrt(var);
+            }
+            d_sum += d;
+            e_sum += e;
+            ++n;
+        }
+        if (n == 0) continue;
+        rows[i][kPdfDistance] = {d_sum / n, e_sum / n};
+        any = true;
+    }
+    if (any && std::find(quantities.begin(), quantities.end(), kPdfDistance) == quantities.end())
+        quantities.push_back(kPdfDistance);
+}
+
+TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>& quantities,
+                                const std::vector<Row>& rows, const std::vector<bool>& have) {
+    TradeoffResult t;
+    const StudyTradeoff& spec = st.tradeoff;
+    std::vector<std::size_t> refs, runs;
+    for (std::size_t i = 0; i < st.runs.size(); ++i) {
+        if (!have[i]) continue;
+        runs.push_back(i);
+        if (st.runs[i].point == spec.reference) refs.push_back(i);
+    }
+    auto analytic_of = [&](const std::string& q) -> const double* {
+        for (const auto& [k, v] : spec.analytic) {
+            if (k == q) return &v;
+        }
+        return nullptr;
+    };
+    std::vector<std::string> wanted = spec.quantities;
+    if (wanted.empty()) {
+        std::set<std::string> avail;
+        for (std::size_t i : refs.empty() ? runs : refs) {
+            for (const auto& [k, v] : rows[i])
+                if (!std::isnan(v.second)) avail.insert(k);
+        }
+        wanted = default_tradeoff_quantities({avail.begin(), avail.end()});
+        for (const auto& [k, v] : spec.analytic) {
+            if (std::find(wanted.begin(), wanted.end(), k) == wanted.end()) wanted.push_back(k);
+        }
+    }
+    if (std::find(quantities.begin(), quantities.end(), spec.cost) == quantities.end())
+        t.problems.push_back(fmt::format("cost quantity '{}' is in no run summary", spec.cost));
+
+    // Reference values.
+    std::vector<double> ref_value, ref_error;
+    for (const auto& q : wanted) {
+        if (const double* a = analytic_of(q)) {
+            t.quantities.push_back(q);
+            t.reference_kind.push_back("analytic");
+            ref_value.push_back(*a);
+            ref_error.push_back(0);
+            continue;
+        }
+        if (refs.empty()) {
+            t.problems.push_back(fmt::format(
+                "{}: no analytic value and no completed run of the reference point '{}'", q,
+                spec.reference));
+            continue;
+        }
+        if (is_distance(q)) {
+            // A distance from the reference: 0 by definition, deviations are absolute.
+            t.quantities.push_back(q);
+            t.reference_kind.push_back(spec.reference + " (distance)");
+            ref_value.push_back(0);
+            ref_error.push_back(0);
+            continue;
+        }
+        double sum = 0, var = 0;
+        std::size_t k = 0;
+        for (std::size_t i : refs) {
+            auto it = rows[i].find(q);
+            if (it == rows[i].end() || !std::isfinite(it->second.first)) continue;
+            sum += it->second.first;
+            var += std::isfinite(it->second.second) ? it->second.second * it->second.second : 0;
+            ++k;
+        }
+        if (k == 0) {
+            t.problems.push_back(fmt::format("{}: the reference runs do not report it", q));
+            continue;
+        }
+        const double mean = sum / double(k);
+        if (mean == 0) {
+            t.problems.push_back(
+                fmt::format("{}: the reference value is 0, so there is no relative deviation", q));
+            continue;
+        }
+        t.quantities.push_back(q);
+        t.reference_kind.push_back(spec.reference);
+        ref_value.push_back(mean);
+        ref_error.push_back(std::sqrt(var) / double(k));
+    }
+
+    const std::size_t nq = t.quantities.size();
+    for (std::size_t i : runs) {
+        TradeoffRow r;
+        r.run = st.runs[i].name;
+        r.point = st.runs[i].point;
+        r.knob = metadata_text(st.runs[i], "knob");
+        r.level = metadata_text(st.runs[i], "level");
+        r.reference = st.runs[i].point == spec.reference;
+        auto c = rows[i].find(spec.cost);
+        r.cost = c == rows[i].end() ? std::nan("") : c->second.first;
+        auto w = rows[i].find("performance.wall_time_s");
+        r.wall = w == rows[i].end() ? std::nan("") : w->second.first;
+        r.worst = 0;
+        for (std::size_t q = 0; q < nq; ++q) {
+            TradeoffCell cell;
+            cell.reference = ref_value[q];
+            cell.reference_error = ref_error[q];
+            auto it = rows[i].find(t.quantities[q]);
+            if (it == rows[i].end()) {
+                cell.value = cell.error = cell.deviation = cell.deviation_error = cell.accuracy =
+                    std::nan("");
+            } else {
+                cell.value = it->second.first;
+                cell.error = it->second.second;
+                const bool distance = is_distance(t.quantities[q]);
+                const double scale = distance ? 1.0 : std::abs(cell.reference);
+                cell.deviation = (cell.value - cell.reference) / scale;
+                // A reference run against the mean of the reference runs: its own error only (the
+                // two are not independent). Any other run: both errors, independent runs.
+                const bool analytic = t.reference_kind[q] == "analytic" || distance;
+                const double e2 =
+                    cell.error * cell.error +
+                    (r.reference || analytic ? 0.0 : cell.reference_error * cell.reference_error);
+                cell.deviation_error = std::sqrt(e2) / scale;
+                cell.accuracy = std::abs(cell.deviation) + cell.deviation_error;
+            }
+            r.worst = std::isnan(cell.accuracy) ? std::nan("") : std::max(r.worst, cell.accuracy);
+            r.cells.push_back(cell);
+        }
+        if (nq == 0) r.worst = std::nan("");
+        t.rows.push_back(std::move(r));
+    }
+    // Pareto fronts: per quantity and for the worst quantity.
+    std::vector<double> cost;
+    for (const auto& r : t.rows) cost.push_back(r.cost);
+    for (std::size_t q = 0; q < nq; ++q) {
+        std::vector<double> acc;
+        for (const auto& r : t.rows) acc.push_back(r.cells[q].accuracy);
+        const auto f = pareto_front(cost, acc);
+        for (std::size_t k = 0; k < t.rows.size(); ++k) t.rows[k].cells[q].pareto = f[k];
+    }
+    {
+        std::vector<double> worst;
+        for (const auto& r : t.rows) worst.push_back(r.worst);
+        const auto f = pareto_front(cost, worst);
+        for (std::size_t k = 0; k < t.rows.size(); ++k) t.rows[k].pareto = f[k];
+    }
+    return t;
+}
+
+void write_tradeoff(h5::Group& root, const TradeoffResult& t) {
+    h5::Group g = root.group("tradeoff");
+    std::vector<std::string> runs, points, knobs, levels;
+    std::vector<double> cost, wall, worst;
+    std::vector<std::int64_t> pareto, reference;
+    for (const auto& r : t.rows) {
+        runs.push_back(r.run);
+        points.push_back(r.point);
+        knobs.push_back(r.knob);
+        levels.push_back(r.level);
+        cost.push_back(r.cost);
+        wall.push_back(r.wall);
+        worst.push_back(r.worst);
+        pareto.push_back(r.pareto);
+        reference.push_back(r.reference);
+    }
+    g.write_strings("runs", runs);
+    g.write_strings("points", points);
+    g.write_strings("knobs", knobs);
+    g.write_strings("levels", levels);
+    g.write("cost", cost);
+    g.attr_on("cost", "unit", "s");
+    g.write("wall_time", wall);
+    g.attr_on("wall_time", "unit", "s");
+    g.write("worst_accuracy", worst);
+    g.write("pareto", pareto);
+    g.write("reference", reference);
+    g.write_strings("quantity_names", t.quantities);
+    g.write_strings("reference_kind", t.reference_kind);
+    g.write_strings("problems", t.problems);
+    for (std::size_t q = 0; q < t.quantities.size(); ++q) {
+        h5::Group qg = g.group("quantities/" + t.quantities[q]);
+        std::vector<double> v, e, d, de, acc;
+        std::vector<std::int64_t> p;
+        for (const auto& r : t.rows) {
+            v.push_back(r.cells[q].value);
+            e.push_back(r.cells[q].error);
+            d.push_back(r.cells[q].deviation);
+            de.push_back(r.cells[q].deviation_error);
+            acc.push_back(r.cells[q].accuracy);
+            p.push_back(r.cells[q].pareto);
+        }
+        qg.write("value", v);
+        qg.write("error", e);
+        qg.write("deviation", d);
+        qg.write("deviation_error", de);
+        qg.write("accuracy", acc);
+        qg.write("pareto", p);
+        const double ref = t.rows.empty() ? std::nan("") : t.rows[0].cells[q].reference;
+        const double ref_e = t.rows.empty() ? std::nan("") : t.rows[0].cells[q].reference_error;
+        qg.write_scalar("reference", ref);
+        qg.attr_on("reference", "error", ref_e);
+        qg.attr("reference_kind", t.reference_kind[q]);
+    }
+}
+
+void write_tradeoff_csv(const std::string& path, const TradeoffResult& t) {
+    std::ofstream o(path);
+    o << "run,point,knob,level,cost_s,wall_time_s,reference_run,worst_accuracy,pareto";
+    for (const auto& q : t.quantities) {
+        for (const char* c : {"value", "error", "deviation", "deviation_error", "pareto"})
+            o << "," << q << "." << c;
+    }
+    o << "\n";
+    auto num = [](double x) { return std::isnan(x) ? std::string() : fmt::format("{:.8g}", x); };
+    for (const auto& r : t.rows) {
+        o << r.run << "," << r.point << "," << r.knob << "," << r.level << "," << num(r.cost) << ","
+          << int(r.reference) << "," << num(r.worst) << "," << int(r.pareto);
+        for (const auto& c : r.cells) {
+            o << "," << num(c.value) << "," << num(c.error) << "," << num(c.deviation) << ","
+              << num(c.deviation_error) << "," << int(c.pareto);
+        }
+        o << "\n";
+    }
+}
+
+std::string tradeoff_table(const TradeoffResult& t) {
+    std::string s;
+    for (std::size_t q = 0; q < t.quantities.size(); ++q) {
+        s += fmt::format("q{} = {}: reference {} = {:.6g} +- {:.2g}\n", q + 1, t.quantities[q],
+                         t.reference_kind[q],
+                         t.rows.empty() ? std::nan("") : t.rows[0].cells[q].reference,
+                         t.rows.empty() ? std::nan("") : t.rows[0].cells[q].reference_error);
+    }
+    s += "\n| run | knob | level | CPU s | wall s |";
+    for (std::size_t q = 0; q < t.quantities.size(); ++q)
+        s += fmt::format(" q{} deviation |", q + 1);
+    s += " worst | front |\n|---|---|---|---:|---:|";
+    for (std::size_t q = 0; q < t.quantities.size(); ++q) s += "---:|";
+    s += "---:|:-:|\n";
+    // Cheapest first: the table reads as a ladder of cost.
+    std::vector<std::size_t> order(t.rows.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return t.rows[a].cost < t.rows[b].cost; });
+    for (std::size_t k : order) {
+        const auto& r = t.rows[k];
+        s += fmt::format("| {}{} | {} | {} | {:.3g} | {:.3g} |", r.run,
+                         r.reference ? " (ref)" : "", r.knob.empty() ? "-" : r.knob,
+                         r.level.empty() ? "-" : r.level, r.cost, r.wall);
+        for (const auto& c : r.cells) {
+            if (std::isnan(c.deviation))
+                s += " - |";
+            else
+                s += fmt::format(" {:+.2f}% +- {:.2f}%{} |", 100 * c.deviation,
+                                 100 * c.deviation_error, c.pareto ? " *" : "");
+        }
+        s += fmt::format(" {:.2f}% | {} |\n", 100 * r.worst, r.pareto ? "yes" : "");
+    }
+    for (const auto& p : t.problems) s += "note: " + p + "\n";
+    return s;
+}
+
+}  // namespace gran
