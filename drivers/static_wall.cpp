@@ -1,5 +1,5 @@
-// Static wall with normal restitution e: v_n' = -e v_n (e = 1: the default elastic wall), e
-// constant or a function of the impact speed.
+// Static wall on a bounded axis (e.g. a lid). Its contacts follow `interactions` under the
+// driver's name: v_n' = -e v_n with the restitution of the grain-wall contact.
 #include "drivers/wall_driver.hpp"
 
 namespace gran {
@@ -8,20 +8,14 @@ namespace {
 template <int D>
 class StaticWall final : public WallDriver<D> {
   public:
-    StaticWall(const Params& p, const SceneInfo& info)
-        : WallDriver<D>(p, info, &impact_wall_rule<D>, make(p), "static") {}
-
-  private:
-    static WallParams make(const Params& p) {
-        WallParams w;
-        w.restitution = read_wall_restitution(p);
-        return w;
-    }
+    StaticWall(const Params& p, const SceneInfo& info) : WallDriver<D>(p, info, "static") {}
 };
 
 const bool registered = register_plugin<Driver, StaticWall>(
-    "static_wall", "static wall on a bounded axis (e.g. a lid) with normal restitution",
-    wall_schema(wall_restitution_schema()));
+    "static_wall",
+    "static wall on a bounded axis (e.g. a lid); its contacts follow `interactions` under the "
+    "driver's name",
+    wall_schema({}));
 
 }  // namespace
 }  // namespace gran

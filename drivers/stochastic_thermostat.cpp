@@ -34,16 +34,15 @@ class StochasticThermostat final : public Driver<D> {
           next_(interval_),
           rng_(make_rng(info.seed + 1000003ull * info.index, Stream::Driver)) {}
 
-    double next_time() const override { return next_; }
+    double next_kick() const override { return next_; }
 
-    void fire(EventDrivenEngine<D>& engine) override {
-        auto& p = engine.particles_for_update();
+    void kick(Particles<D>& p, const SpeciesTable& species) override {
         const std::size_t n = p.size();
         kicks_.resize(n);
         Vec<D> dp = Vec<D>::Zero();
         double mass = 0;
         for (std::size_t i = 0; i < n; ++i) {
-            const double m = mass_of(engine, i);
+            const double m = species.species[p.species[i]].mass;
             const double sd = equal_force_ ? std::sqrt(strength_ * interval_) / m
                                            : std::sqrt(strength_ * interval_);
             for (int a = 0; a < D; ++a) kicks_[i][a] = sd * gaussian(rng_);
@@ -53,14 +52,13 @@ class StochasticThermostat final : public Driver<D> {
         const Vec<D> drift = remove_drift_ ? Vec<D>(dp / mass) : Vec<D>::Zero();
         double de = 0;
         for (std::size_t i = 0; i < n; ++i) {
-            const double m = mass_of(engine, i);
+            const double m = species.species[p.species[i]].mass;
             const Vec<D> v_new = p.v[i] + kicks_[i] - drift;
             de += 0.5 * m * (v_new.squaredNorm() - p.v[i].squaredNorm());
             p.v[i] = v_new;
         }
         injected_ += de;
         ++count_;
-        engine.velocities_changed();
         next_ += interval_;
     }
 
@@ -106,10 +104,6 @@ class StochasticThermostat final : public Driver<D> {
     }
 
   private:
-    static double mass_of(const EventDrivenEngine<D>& engine, std::size_t i) {
-        return engine.species_mass(engine.particles().species[i]);
-    }
-
     double interval_;
     double strength_;
     bool equal_force_;

@@ -1,8 +1,8 @@
 // Vibrating wall of infinite mass with a prescribed waveform (McNamara & Falcon 2005, Sec. II B;
 // Barrat & Trizac 2002, Sec. III A; Bhateja et al. 2016): the piston of two joined parabolas, a
-// sinusoid, or the sawtooth limit. Particle-wall contacts are found exactly
-// (drivers/wall_motion.hpp); the rule is v_n' - u = -e (v_n - u) with u the wall velocity at
-// contact and e constant or a function of |v_n - u|.
+// sinusoid, or a sawtooth. Its contacts follow `interactions` under the driver's name: on the
+// event-driven engine v_n' - u = -e (v_n - u), u the wall velocity at contact (found exactly,
+// libgran/core/wall_motion.hpp), e the grain-wall restitution (constant or of |v_n - u|).
 #include <numbers>
 
 #include "drivers/wall_driver.hpp"
@@ -16,10 +16,14 @@ constexpr double kPi = std::numbers::pi;
 WallMotion motion_for(const Params& p, int side) {
     const std::string wave = p.str("waveform");
     if (wave == "sawtooth") {
-        // v0 given, or 2 A f of the real sawtooth (the dem engine moves that one).
+        // The real sawtooth z = A (2 frac(f t) - 1) of amplitude A and frequency f (the
+        // event-driven engine takes its limit A -> 0 at v0 = 2 A f), or that limit itself when
+        // only v0 is given.
+        if (p.has("amplitude") && p.has("frequency")) {
+            return WallMotion::sawtooth_ramp(p.real("amplitude"), p.real("frequency"),
+                                             p.real("phase"), side == 0 ? +1 : -1);
+        }
         if (p.has("velocity")) return WallMotion::sawtooth(p.real("velocity"));
-        if (p.has("amplitude") && p.has("frequency"))
-            return WallMotion::sawtooth(2 * p.real("amplitude") * p.real("frequency"));
         p.fail("waveform",
                "waveform 'sawtooth' needs `velocity` (v0) or `amplitude` and "
                "`frequency` (v0 = 2 A f)");
@@ -40,16 +44,14 @@ template <int D>
 class VibratingWall final : public WallDriver<D> {
   public:
     VibratingWall(const Params& p, const SceneInfo& info)
-        : WallDriver<D>(p, info, &impact_wall_rule<D>, make(p), "vibrating " + p.str("waveform"),
-                        motion_for(p, 0), motion_for(p, 1)),
+        : WallDriver<D>(p, info, "vibrating " + p.str("waveform"), motion_for(p, 0),
+                        motion_for(p, 1), "waveform"),
           motion_(motion_for(p, 0)),
           waveform_(p.str("waveform")) {
         if (waveform_ == "sawtooth" && p.has("amplitude") && p.has("frequency")) {
             const double a = p.real("amplitude"), f = p.real("frequency");
             if (p.has("velocity") && std::abs(p.real("velocity") - 2 * a * f) > 1e-9 * 2 * a * f)
                 p.fail("velocity", "sawtooth: velocity must equal 2 amplitude frequency");
-            this->dem_motion_ = {WallMotion::sawtooth_ramp(a, f, p.real("phase"), +1),
-                                 WallMotion::sawtooth_ramp(a, f, p.real("phase"), -1)};
         }
         const double v = peak_velocity();
         if (waveform_ != "sawtooth" && !(v > 0))
@@ -68,14 +70,13 @@ class VibratingWall final : public WallDriver<D> {
     // Maximum wall speed: V = 4 A f for the two parabolas (McNamara & Falcon 2005), A omega for a
     // sinusoid, v0 for the sawtooth.
     double peak_velocity() const override {
-        if (waveform_ == "sawtooth") return motion_.v0;
+        if (waveform_ == "sawtooth") return std::abs(motion_.v0);
         if (waveform_ == "two_parabolas") return 4 * motion_.amplitude * motion_.omega / (2 * kPi);
         return motion_.amplitude * motion_.omega;
     }
 
     double drive_period() const override {
-        if (waveform_ == "sawtooth")
-            return this->dem_motion_[0].omega > 0 ? 2 * kPi / this->dem_motion_[0].omega : 0.0;
+        if (waveform_ == "sawtooth") return motion_.omega > 0 ? 2 * kPi / motion_.omega : 0.0;
         return 2 * kPi / motion_.omega;
     }
 
@@ -91,11 +92,6 @@ class VibratingWall final : public WallDriver<D> {
     }
 
   private:
-    static WallParams make(const Params& p) {
-        WallParams w;
-        w.restitution = read_wall_restitution(p);
-        return w;
-    }
     WallMotion motion_;
     std::string waveform_;
 };
@@ -126,7 +122,6 @@ const bool registered = register_plugin<Driver, VibratingWall>(
                     real("velocity", "", "velocity",
                          "sawtooth: wall speed v0 (or give amplitude and frequency: v0 = 2 A f)", 0,
                          1e308, true))};
-            for (auto& r : wall_restitution_schema()) s.push_back(r);
             return s;
         }(),
         "lower"));

@@ -1,16 +1,16 @@
 #pragma once
-// Walls as drivers: a wall rule (species/wall_rules.hpp) installed on one or both walls of a
-// bounded axis, static or moving with a prescribed waveform. Shared by the static, thermal,
-// sawtooth and vibrating wall plugins.
+// Walls as drivers: one or both walls of a bounded axis, static or moving with a prescribed
+// waveform, described to the engine (libgran/plugins/wall.hpp). Their contacts with the grains
+// follow `interactions` under the driver's name (its `name`, default its type); a thermal wall
+// replaces the contact by its own rule. Shared by the static, thermal, sawtooth and vibrating
+// wall plugins.
 #include <fmt/format.h>
 
 #include <array>
-#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "libgran/plugins/driver.hpp"
-#include "libgran/core/random.hpp"
-#include "species/restitution_params.hpp"
 
 namespace gran {
 
@@ -26,17 +26,14 @@ inline Schema wall_schema(Schema extra, std::string default_side = "both") {
 template <int D>
 class WallDriver : public Driver<D> {
   public:
-    using Rule = typename EventDrivenEngine<D>::WallRule;
-
-    WallDriver(const Params& p, const SceneInfo& info, Rule rule, WallParams params,
-               std::string what, WallMotion lower_motion = WallMotion::fixed(),
-               WallMotion upper_motion = WallMotion::fixed())
-        : rule_(rule),
-          params_(params),
-          motion_{lower_motion, upper_motion},
+    // `motion_key`: the key that chose the motion (for an engine's refusal of it).
+    WallDriver(const Params& p, const SceneInfo& info, std::string what,
+               WallMotion lower_motion = WallMotion::fixed(),
+               WallMotion upper_motion = WallMotion::fixed(), std::string motion_key = "type")
+        : motion_{lower_motion, upper_motion},
           what_(std::move(what)),
-          rng_(make_rng(info.seed + 7919ull * (info.index + 1), Stream::Driver)),
-          dem_motion_{lower_motion, upper_motion} {
+          partner_(p.has("name") ? p.str("name") : p.str("type")),
+          motion_key_(std::move(motion_key)) {
         const std::string axis = p.str("axis");
         axis_ = axis == "x" ? 0 : (axis == "y" ? 1 : 2);
         if (axis_ >= D) p.fail("axis", fmt::format("axis {} does not exist in {}D", axis, D));
@@ -50,50 +47,22 @@ class WallDriver : public Driver<D> {
         upper_ = side != "lower";
     }
 
-    void attach(EventDrivenEngine<D>& engine) override {
-        engine_ = &engine;
-        if (lower_) engine.set_wall(axis_, 0, rule_, params_, &rng_, motion_[0]);
-        if (upper_) engine.set_wall(axis_, 1, rule_, params_, &rng_, motion_[1]);
+    std::vector<WallSpec<D>> walls() override {
+        std::vector<WallSpec<D>> w;
+        for (int side = 0; side < 2; ++side) {
+            if (side == 0 ? !lower_ : !upper_) continue;
+            w.push_back({partner_, axis_, side, motion_[std::size_t(side)], motion_key_,
+                         reflection_});
+        }
+        return w;
     }
-
-    // DEM: the same walls as soft contacts with restitution e (a constant law only: the damping
-    // of a linear spring-dashpot is set from one e, Eq. A9). A rule other than the impact rule
-    // (thermal wall) and the sawtooth limit (no wall position) are refused.
-    std::string attach(DemEngine<D>& engine) override {
-        if (rule_ != &impact_wall_rule<D>) {
-            refusal_key_ = "type";
-            return "a " + what_ + " wall is not available on the dem engine";
-        }
-        if (params_.restitution.kind != ImpactRestitution::Kind::constant) {
-            refusal_key_ = "restitution_law";
-            return "the dem engine takes a constant wall restitution (`restitution`); an impact-"
-                   "speed law comes from the contact law itself (engine.contact_law: "
-                   "hertz_mindlin)";
-        }
-        for (const auto& m : dem_motion_) {
-            if (m.kind == WallMotion::Kind::sawtooth) {
-                refusal_key_ = "waveform";
-                return "the sawtooth limit (A -> 0) has no wall position; on the dem engine give "
-                       "vibrating_wall `amplitude` and `frequency` (a real sawtooth, v0 = 2 A f)";
-            }
-        }
-        try {
-            if (lower_) engine.set_wall(axis_, 0, dem_motion_[0], params_.restitution.e_const);
-            if (upper_) engine.set_wall(axis_, 1, dem_motion_[1], params_.restitution.e_const);
-        } catch (const std::invalid_argument& e) {
-            refusal_key_ = "restitution";
-            return e.what();
-        }
-        dem_ = &engine;
-        return {};
-    }
-    std::string dem_refusal_key() const override { return refusal_key_; }
+    void observe(const EngineView<D>& view) override { view_ = &view; }
 
     void write(h5::Group& g, YAML::Node& summary) const override {
-        if (!engine_ && !dem_) return;
+        if (!view_) return;
         g.attr("wall", what_);
-        const auto& hits = engine_ ? engine_->wall_hits() : dem_->wall_hits();
-        const auto& impulse = engine_ ? engine_->wall_impulse() : dem_->wall_impulse();
+        const auto& hits = view_->wall_hits();
+        const auto& impulse = view_->wall_impulse();
         for (int side = 0; side < 2; ++side) {
             if (side == 0 ? !lower_ : !upper_) continue;
             const std::string name = side == 0 ? "lower" : "upper";
@@ -106,21 +75,20 @@ class WallDriver : public Driver<D> {
         }
     }
 
-  private:
-    Rule rule_;
-    WallParams params_;
-    std::array<WallMotion, 2> motion_;  // lower, upper
-    std::string what_;
-    Rng rng_;
-    std::string refusal_key_ = "type";
-
   protected:
-    // The motion on the dem engine where it differs (a real sawtooth for the sawtooth limit).
-    std::array<WallMotion, 2> dem_motion_;
+    // A rule replacing the contact (owned by the derived driver).
+    void replace_contact(WallReflection<D>* reflection) { reflection_ = reflection; }
+
+    std::array<WallMotion, 2> motion_;  // lower, upper
     int axis_ = 0;
     bool lower_ = true, upper_ = true;
-    const EventDrivenEngine<D>* engine_ = nullptr;
-    const DemEngine<D>* dem_ = nullptr;
+
+  private:
+    std::string what_;
+    std::string partner_;
+    std::string motion_key_;
+    WallReflection<D>* reflection_ = nullptr;
+    const EngineView<D>* view_ = nullptr;
 };
 
 }  // namespace gran

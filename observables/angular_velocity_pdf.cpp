@@ -21,6 +21,7 @@ class AngularVelocityPdf final : public Observable<D> {
   public:
     AngularVelocityPdf(const Params& p, const SceneInfo& info)
         : table_(*info.species),
+          rotating_(info.rotating),
           bins_(static_cast<unsigned>(p.integer("bins"))),
           range_(p.real("range")),
           nblocks_(static_cast<std::size_t>(p.integer("blocks"))) {
@@ -45,7 +46,7 @@ class AngularVelocityPdf final : public Observable<D> {
     }
 
     void sample(const SampleContext<D>& ctx) override {
-        if (!ctx.measuring || !table_.rough()) return;
+        if (!ctx.measuring || !rotating_) return;
         const auto& p = ctx.engine.particles();
         const std::size_t ns = table_.size();
         const std::size_t block = std::min(
@@ -77,7 +78,7 @@ class AngularVelocityPdf final : public Observable<D> {
     }
 
     void write(h5::Group& g, YAML::Node& summary) const override {
-        if (!table_.rough()) {
+        if (!rotating_) {
             g.attr("note", "smooth particles (every beta = -1): no angular velocities");
             summary["note"] = "smooth particles: no angular velocities";
             return;
@@ -109,6 +110,7 @@ class AngularVelocityPdf final : public Observable<D> {
         Series c2, c4;
     };
     const SpeciesTable& table_;
+    bool rotating_ = false;  // the grains carry angular velocities
     unsigned bins_;
     double range_;
     std::size_t nblocks_;

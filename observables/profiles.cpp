@@ -24,6 +24,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
   public:
     Profiles(const Params& p, const SceneInfo& info)
         : table_(*info.species),
+          nominal_restitution_(info.nominal_restitution),
           bins_(static_cast<std::size_t>(p.integer("bins"))),
           nblocks_(static_cast<std::size_t>(p.integer("blocks"))),
           window_(p.real("middle_window")) {
@@ -39,13 +40,13 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
             p.has("reference_species") ? p.str("reference_species") : table_.species[0].name;
         ref_ = table_.index_of(ref);
         if (ref_ == table_.size()) p.fail("reference_species", "unknown species '" + ref + "'");
-        rotating_ = table_.rough();
+        rotating_ = info.rotating;
         // Per block, per (bin + 1 middle row), per species: count, sum m v_a^2 (D), sum I w^2.
         stride_ = 2 + D;
         sums_.assign(nblocks_ * (bins_ + 1) * table_.size() * stride_, 0.0);
         samples_in_block_.assign(nblocks_, 0);
         // The collisional virial needs binary collision records: event-driven runs only.
-        pressure_ = p.boolean("pressure") && info.engine != "dem";
+        pressure_ = p.boolean("pressure") && info.binary_collisions;
         coll_.assign(nblocks_ * (bins_ + 1) * D, 0.0);
         block_time_.assign(nblocks_, 0.0);
     }
@@ -278,7 +279,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         if (enskog) {
             chi = theory::contact_values_mixture(D, phi, sigma, x);
             for (std::size_t i = 0; i < ns; ++i) {
-                for (std::size_t j = 0; j < ns; ++j) alpha[i * ns + j] = table_.pair(i, j).alpha;
+                for (std::size_t j = 0; j < ns; ++j) alpha[i * ns + j] = nominal_restitution_[i * ns + j];
             }
         }
         return theory::enskog_pressure(D, n, T, m, sigma, alpha, chi);
@@ -329,6 +330,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
     }
 
     const SpeciesTable& table_;
+    std::vector<double> nominal_restitution_;  // per species pair, for the Enskog pressure
     std::size_t bins_, nblocks_;
     double window_;
     int axis_ = 1;

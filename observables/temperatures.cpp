@@ -23,7 +23,7 @@ class Temperatures final : public Observable<D> {
         ref_ = table_.index_of(ref);
         if (ref_ == table_.size()) p.fail("reference_species", "unknown species '" + ref + "'");
         per_species_.resize(table_.size());
-        rotating_ = table_.rough();
+        rotating_ = info.rotating;
     }
 
     void sample(const SampleContext<D>& ctx) override {

@@ -1,24 +1,38 @@
-// Constant normal restitution alpha and tangential restitution beta (Barrat & Trizac 2002, Eq. (1)
-// and Appendix A). The default law of every pair.
-#include "species/pair_law.hpp"
+// Constant normal restitution alpha and tangential restitution beta: Barrat & Trizac 2002, Eq. (1)
+// (g_n' = -alpha g_n) and Appendix A (g_t' = -beta g_t of the contact points). The default law of
+// every contact. Against a wall only the normal component is reflected (the walls of the paper,
+// Sec. III A), so beta applies to grain-grain collisions.
+#include "libgran/engines/register_law.hpp"
 
 namespace gran {
 namespace {
 
-const bool registered = PairLawRegistry::instance().add(PairLaw{
+struct ConstantRestitution {
+    struct Pair {
+        double alpha = 1;  // normal restitution, (0, 1]
+        double beta = -1;  // tangential restitution, [-1, 1]; -1 smooth
+    };
+    static constexpr bool impact_dependent = false;
+
+    static Pair resolve(const Params& p, const ContactPartner&, const ContactPartner& b,
+                        const LawContext&) {
+        return {p.real("alpha"), b.wall ? -1.0 : p.real("beta")};
+    }
+    static double normal_restitution(const Pair& c, double /*impact_speed*/) { return c.alpha; }
+    static double tangential_restitution(const Pair& c) { return c.beta; }
+    static double nominal_restitution(const Pair& c) { return c.alpha; }
+    static bool rotates(const Pair& c) { return c.beta != -1.0; }
+};
+
+const bool registered = register_law<ConstantRestitution>(
     "constant_restitution",
     "hard-particle collision with constant normal (alpha) and tangential (beta) restitution",
     {real("alpha", "1", "", "normal restitution coefficient alpha_ij (1 = elastic)", 0, 1, true,
           false),
      real("beta", "-1", "",
-          "tangential restitution coefficient beta_ij (-1 = smooth, no rotation; 1 = perfectly "
-          "rough)",
-          -1, 1)},
-    [](const Params& p, PairCoefficients& c) {
-        c.alpha = p.real("alpha");
-        c.beta = p.real("beta");
-        c.restitution = constant_impact_restitution(c.alpha);
-    }});
+          "tangential restitution coefficient beta_ij of grain-grain collisions (-1 = smooth, no "
+          "rotation; 1 = perfectly rough); wall collisions reflect the normal component only",
+          -1, 1)});
 
 }  // namespace
 }  // namespace gran

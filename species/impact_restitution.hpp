@@ -1,6 +1,7 @@
 #pragma once
 // Impact-velocity-dependent coefficients of normal restitution for hard-particle collisions, as
-// plain functions on plain data, evaluated once per collision by the event-driven engine.
+// plain functions on plain data: the kernels of the laws `mcnamara_falcon` and `viscoelastic`
+// (species/mcnamara_falcon.cpp, species/viscoelastic.cpp), evaluated once per collision.
 //
 // Convention (as in collision_rules.hpp): the coefficient e relates the normal components of the
 // relative velocity at contact before and after the collision, g_n' = -e g_n. The impact speed is
@@ -17,7 +18,6 @@
 //                    series of viscoelastic (Hertz + dissipative) spheres, to order v^{2/5}.
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 
 namespace gran {
@@ -128,73 +128,6 @@ inline double viscoelastic_gamma_from_reference(double e_ref, double v_ref) {
 // Impact speed up to which the series is used inside its documented validity: x(v) = x_valid.
 inline double viscoelastic_max_valid_speed(double gamma, double x_valid = kViscoelasticValidX) {
     return std::pow(x_valid / gamma, 5.0);
-}
-
-// ---------------------------------------------------------------------------------------------
-// One restitution law of a species pair (or a wall), as plain data for the collision kernel.
-struct ImpactRestitution {
-    enum class Kind : std::uint8_t { constant, mcnamara_falcon, viscoelastic };
-    Kind kind = Kind::constant;
-    double e_const = 1;  // constant: e
-    double r0 = 1;       // mcnamara_falcon: r0, dimensionless (paper: kMcNamaraFalconR0)
-    double v0 = 1;       // mcnamara_falcon: v0, velocity unit (paper: kMcNamaraFalconV0 m/s)
-    double gamma = 0;    // viscoelastic: gamma = A kappa^{2/5}, (time/length)^{1/5}
-};
-
-inline ImpactRestitution constant_impact_restitution(double e) {
-    ImpactRestitution law;
-    law.kind = ImpactRestitution::Kind::constant;
-    law.e_const = e;
-    return law;
-}
-
-inline ImpactRestitution mcnamara_falcon_impact_restitution(double r0, double v0) {
-    ImpactRestitution law;
-    law.kind = ImpactRestitution::Kind::mcnamara_falcon;
-    law.r0 = r0;
-    law.v0 = v0;
-    return law;
-}
-
-inline ImpactRestitution viscoelastic_impact_restitution(double gamma) {
-    ImpactRestitution law;
-    law.kind = ImpactRestitution::Kind::viscoelastic;
-    law.gamma = gamma;
-    return law;
-}
-
-// Null when the parameters of the selected law are admissible, otherwise what is wrong (for
-// scene validation; the kernels themselves do not check).
-inline const char* impact_restitution_problem(const ImpactRestitution& law) {
-    switch (law.kind) {
-        case ImpactRestitution::Kind::constant:
-            return law.e_const >= 0 && law.e_const <= 1 ? nullptr : "e_const must lie in [0, 1]";
-        case ImpactRestitution::Kind::mcnamara_falcon:
-            if (!(law.r0 >= 0 && law.r0 <= 1)) return "r0 must lie in [0, 1]";
-            if (!(law.v0 > 0 && std::isfinite(law.v0))) return "v0 must be positive and finite";
-            return nullptr;
-        case ImpactRestitution::Kind::viscoelastic:
-            return law.gamma >= 0 && std::isfinite(law.gamma)
-                       ? nullptr
-                       : "gamma must be non-negative and finite";
-    }
-    return "unknown restitution kind";
-}
-
-// Coefficient of normal restitution for one collision. `impact_speed` is the normal relative
-// velocity at contact; its sign is ignored, so g_n = (v1 - v2).n can be passed as it is. The
-// constant law returns e_const exactly. One switch on a per-pair constant, no virtual call.
-inline double restitution(const ImpactRestitution& law, double impact_speed) {
-    const double v = std::fabs(impact_speed);
-    switch (law.kind) {
-        case ImpactRestitution::Kind::constant:
-            return law.e_const;
-        case ImpactRestitution::Kind::mcnamara_falcon:
-            return mcnamara_falcon_restitution(v, law.r0, law.v0);
-        case ImpactRestitution::Kind::viscoelastic:
-            return viscoelastic_restitution(v, law.gamma);
-    }
-    return law.e_const;
 }
 
 }  // namespace gran

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <filesystem>
@@ -12,12 +13,14 @@
 #include <sstream>
 
 #include "libgran/plugins/driver.hpp"
+#include "libgran/plugins/engine.hpp"
+#include "libgran/plugins/law.hpp"
+#include "libgran/plugins/observable.hpp"
+#include "libgran/plugins/placement.hpp"
 #include "libgran/run/run.hpp"
 #include "libgran/scene/scene.hpp"
 #include "libgran/study/study.hpp"
 #include "libgran/study/tradeoff_ladder.hpp"
-#include "libgran/plugins/observable.hpp"
-#include "species/pair_law.hpp"
 
 namespace {
 
@@ -46,26 +49,30 @@ void print_plugins(const char* title, const Plugins& plugins) {
 }
 
 int cmd_list(const std::string& what) {
-    if (what.empty() || what == "scene") {
+    const std::vector<std::string> kinds{"scene", "laws", "engines", "drivers", "observables",
+                                         "placements"};
+    if (!what.empty() && std::find(kinds.begin(), kinds.end(), what) == kinds.end()) {
+        std::cerr << "gran list: unknown category '" << what
+                  << "'; expected scene, laws, engines, drivers, observables or placements\n";
+        return 2;
+    }
+    const auto wanted = [&](const char* kind) { return what.empty() || what == kind; };
+    if (wanted("scene")) {
         std::cout << "scene sections:\n";
         for (const auto& sec : gran::scene_sections()) {
             std::cout << "  " << sec.name << ": " << sec.summary << "\n";
             print_schema(sec.schema);
         }
     }
-    if (what.empty() || what == "laws")
-        print_plugins("laws (interactions.law)", gran::PairLawRegistry::instance().all());
-    if (what.empty() || what == "drivers")
-        print_plugins("drivers", gran::Registry<gran::Driver>::instance().all());
-    if (what.empty() || what == "observables") {
-        print_plugins("observables", gran::Registry<gran::Observable>::instance().all());
-    }
-    if (!what.empty() && what != "scene" && what != "laws" && what != "drivers" &&
-        what != "observables") {
-        std::cerr << "gran list: unknown category '" << what
-                  << "'; expected scene, laws, drivers or observables\n";
-        return 2;
-    }
+    if (wanted("laws"))
+        print_plugins("laws (interactions.law)", gran::LawRegistry::instance().all());
+    if (wanted("engines"))
+        print_plugins("engines (engine.type)", gran::EngineRegistry::instance().all());
+    if (wanted("drivers")) print_plugins("drivers", gran::DriverRegistry::instance().all());
+    if (wanted("observables"))
+        print_plugins("observables", gran::ObservableRegistry::instance().all());
+    if (wanted("placements"))
+        print_plugins("placements (initial.placement)", gran::PlacementRegistry::instance().all());
     return 0;
 }
 
@@ -266,7 +273,8 @@ int main(int argc, char** argv) {
     auto* list =
         app.add_subcommand("list", "document scene sections and plugins with their parameters");
     std::string what;
-    list->add_option("what", what, "scene, laws, drivers or observables (default: all)");
+    list->add_option("what", what,
+                     "scene, laws, engines, drivers, observables or placements (default: all)");
 
     CLI11_PARSE(app, argc, argv);
     spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::from_str(log_level));

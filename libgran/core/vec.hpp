@@ -35,4 +35,24 @@ inline double ang_squared(const AngVec<D>& w) {
     }
 }
 
+// w x n for an angular velocity w: in 2D w is the z component, so w x n = w (-n_y, n_x).
+template <int D>
+inline Vec<D> cross_w(const AngVec<D>& w, const Vec<D>& n) {
+    if constexpr (D == 2) {
+        return Vec<D>(-w * n.y(), w * n.x());
+    } else {
+        return w.cross(n);
+    }
+}
+
+// n x p, as an angular quantity (a scalar z component in 2D).
+template <int D>
+inline AngVec<D> cross_n(const Vec<D>& n, const Vec<D>& p) {
+    if constexpr (D == 2) {
+        return n.x() * p.y() - n.y() * p.x();
+    } else {
+        return n.cross(p);
+    }
+}
+
 }  // namespace gran

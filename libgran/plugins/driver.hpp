@@ -1,15 +1,22 @@
 #pragma once
-// Energy injection and confinement. A driver may own global events (e.g. thermostat kicks): the run
-// loop stops the engine at next_time(), synchronises all particles, and calls fire().
+// Energy injection and confinement, engine-free: a driver describes what it does and each engine
+// translates it.
+//  - walls(): the walls it puts on bounded axes (libgran/plugins/wall.hpp), each with a motion and
+//    a partner name in `interactions` (or a rule replacing the contact, a thermal wall);
+//  - next_kick() and kick(): global kick events (a thermostat): the run stops the engine at
+//    next_kick(), brings every particle to that time, calls kick() on the velocities and tells the
+//    engine they changed.
+// Gravity is a scene key, not a driver.
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <vector>
 
-#include "libgran/engines/dem/engine.hpp"
-#include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/core/h5.hpp"
 #include "libgran/core/registry.hpp"
-#include "libgran/scene/scene_info.hpp"
+#include "libgran/plugins/engine_view.hpp"
+#include "libgran/plugins/scene_info.hpp"
+#include "libgran/plugins/wall.hpp"
 
 namespace gran {
 
@@ -17,28 +24,23 @@ template <int D>
 class Driver {
   public:
     virtual ~Driver() = default;
-    // Called once the engine exists, before the run (e.g. to install wall rules).
-    virtual void attach(EventDrivenEngine<D>& /*engine*/) {}
-    // The same on the soft-sphere DEM engine (engine.type: dem), which has walls but no global
-    // events. Returns an empty string, or why this driver cannot run there (the scene is refused
-    // with that message at the driver's `dem_refusal_key()`).
-    virtual std::string attach(DemEngine<D>& /*engine*/) {
-        return "this driver is not available on the dem engine (engine.type: dem supports "
-               "static_wall and vibrating_wall)";
-    }
-    virtual std::string dem_refusal_key() const { return "type"; }
+    // The walls this driver puts on bounded axes (called once, before the run).
+    virtual std::vector<WallSpec<D>> walls() { return {}; }
+    // Time of the next kick event (+inf: none), and the kick: every particle's velocity at that
+    // time, in the engine's storage order (species from `species`).
+    virtual double next_kick() const { return kInf; }
+    virtual void kick(Particles<D>& /*particles*/, const SpeciesTable& /*species*/) {}
+    // Once the engine runs: what the driver may read of it (e.g. the hits on its walls).
+    virtual void observe(const EngineView<D>& /*view*/) {}
     // Largest speed of a moving boundary (V_p = A omega of a vibrating wall), 0 if none: the
     // velocity scale of the vibrated-bed observables (W = V_p^2 / (d g)).
     virtual double peak_velocity() const { return 0; }
     // Period of that motion (0: none), for phase-resolved averages.
     virtual double drive_period() const { return 0; }
-    // Time of the next global event of this driver (+inf: none).
-    virtual double next_time() const { return kInf; }
-    // Called with the engine synchronised at next_time(); must call engine.velocities_changed()
-    // if it changed velocities.
-    virtual void fire(EventDrivenEngine<D>& /*engine*/) {}
     // Its own statistics (e.g. injected energy) under /drivers/<name>, and lines for the summary.
     virtual void write(h5::Group& /*group*/, YAML::Node& /*summary*/) const {}
 };
+
+using DriverRegistry = Registry<DimensionalPlugin<Driver>>;
 
 }  // namespace gran

@@ -8,11 +8,12 @@
 #include <cstdint>
 #include <string>
 
-#include "libgran/engines/engine_view.hpp"
+#include "libgran/core/collision_record.hpp"
 #include "libgran/core/h5.hpp"
 #include "libgran/core/registry.hpp"
-#include "libgran/scene/scene_info.hpp"
 #include "libgran/core/statistics.hpp"
+#include "libgran/plugins/engine_view.hpp"
+#include "libgran/plugins/scene_info.hpp"
 
 namespace gran {
 
@@ -31,9 +32,9 @@ template <int D>
 class Observable {
   public:
     virtual ~Observable() = default;
-    // Non-null to receive every collision (costs a record per collision; only when asked). Only the
-    // event-driven engine makes collision records: a scene that needs them on the dem engine is
-    // refused.
+    // Non-null to receive every collision (costs a record per collision; only when asked). Only an
+    // engine with binary collisions makes collision records (SceneInfo::binary_collisions): a scene
+    // that needs them on another engine is refused.
     virtual CollisionSink<D>* collision_sink() { return nullptr; }
     virtual void sample(const SampleContext<D>& ctx) = 0;
     virtual void write(h5::Group& group, YAML::Node& summary) const = 0;
@@ -74,6 +75,10 @@ Vec<D> centre_of_mass_velocity(const Particles<D>& p, const SpeciesTable& table)
     }
     return momentum / mass;
 }
+
+using ObservableRegistry = Registry<DimensionalPlugin<Observable>>;
+
+using ObservableRegistry = Registry<DimensionalPlugin<Observable>>;
 
 inline const char* component_name(int a) {
     return a == 0 ? "x" : (a == 1 ? "y" : "z");

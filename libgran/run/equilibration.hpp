@@ -13,7 +13,7 @@
 #include <span>
 
 #include "libgran/core/h5.hpp"
-#include "libgran/scene/scene.hpp"
+#include "libgran/scene/schedule.hpp"
 
 namespace gran {
 

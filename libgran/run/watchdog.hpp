@@ -17,17 +17,12 @@
 #include <cstdint>
 #include <string>
 
-#include "libgran/engines/engine_view.hpp"
-#include "species/species.hpp"
+#include "libgran/core/species.hpp"
+#include "libgran/plugins/engine_view.hpp"
+#include "libgran/scene/schedule.hpp"
 
 namespace gran {
 
-struct WatchdogSettings {
-    bool enabled = true;
-    std::uint64_t window = 1000000;  // events (event-driven) or steps (dem) between checks
-    double max_rate_growth = 1e6;    // stop when the event rate exceeds this x the first window's
-    double max_events_per_tc = 0.1;  // stop when events per particle per tc exceed this
-};
 
 // One window of event-driven work: `events` events took the simulated time from t_begin to t_end.
 struct ProgressWindow {

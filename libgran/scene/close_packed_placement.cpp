@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "libgran/plugins/placement.hpp"
 #include "libgran/scene/placement.hpp"
 
 namespace gran {
@@ -111,7 +112,7 @@ Particles<D> place_close_packed(const Box<D>& box, const SpeciesTable& table, Rn
         }
     }
     Particles<D> p;
-    p.resize(n, table.rough());
+    p.resize(n, false);
     std::vector<std::uint32_t> seq;
     for (std::uint32_t s = 0; s < table.size(); ++s)
         seq.insert(seq.end(), table.species[s].count, s);
@@ -127,5 +128,17 @@ Particles<D> place_close_packed(const Box<D>& box, const SpeciesTable& table, Rn
 
 template Particles<2> place_close_packed<2>(const Box<2>&, const SpeciesTable&, Rng&);
 template Particles<3> place_close_packed<3>(const Box<3>&, const SpeciesTable&, Rng&);
+
+namespace {
+
+const bool registered = PlacementRegistry::instance().add(
+    {{"close_packed",
+      "hexagonal (2D) or fcc (3D) lattice stretched to the box, up to the densest packing; "
+      "vacancies spread evenly, species shuffled",
+      {}},
+     [](const Box<2>& b, const SpeciesTable& t, Rng& r) { return place_close_packed<2>(b, t, r); },
+     [](const Box<3>& b, const SpeciesTable& t, Rng& r) { return place_close_packed<3>(b, t, r); }});
+
+}  // namespace
 
 }  // namespace gran

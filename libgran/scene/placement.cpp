@@ -1,5 +1,7 @@
 #include "libgran/scene/placement.hpp"
 
+#include "libgran/plugins/placement.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -35,7 +37,7 @@ std::vector<std::uint32_t> species_sequence(const SpeciesTable& table) {
 template <int D>
 Particles<D> empty_particles(const SpeciesTable& table) {
     Particles<D> p;
-    p.resize(table.total_count(), table.rough());
+    p.resize(table.total_count(), false);
     return p;
 }
 
@@ -236,6 +238,23 @@ template Particles<3> place_random<3>(const Box<3>&, const SpeciesTable&, Rng&, 
 template Particles<2> place_lattice<2>(const Box<2>&, const SpeciesTable&, Rng&);
 template Particles<3> place_lattice<3>(const Box<3>&, const SpeciesTable&, Rng&);
 template void maxwellian_velocities<2>(Particles<2>&, const SpeciesTable&, double, Rng&);
+
+namespace {
+
+const bool random_registered = PlacementRegistry::instance().add(
+    {{"random",
+      "random sequential insertion without overlaps, largest particles first (up to packing "
+      "fractions of about 0.45 for disks, 0.3 for spheres)",
+      {}},
+     [](const Box<2>& b, const SpeciesTable& t, Rng& r) { return place_random<2>(b, t, r); },
+     [](const Box<3>& b, const SpeciesTable& t, Rng& r) { return place_random<3>(b, t, r); }});
+
+const bool lattice_registered = PlacementRegistry::instance().add(
+    {{"lattice", "square (2D) or simple cubic (3D) lattice, species shuffled over the sites", {}},
+     [](const Box<2>& b, const SpeciesTable& t, Rng& r) { return place_lattice<2>(b, t, r); },
+     [](const Box<3>& b, const SpeciesTable& t, Rng& r) { return place_lattice<3>(b, t, r); }});
+
+}  // namespace
 template void maxwellian_velocities<3>(Particles<3>&, const SpeciesTable&, double, Rng&);
 
 }  // namespace gran

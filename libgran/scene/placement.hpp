@@ -1,13 +1,15 @@
 #pragma once
-// Initial configurations generated from the scene: random non-overlapping placement or a lattice,
-// and Maxwellian velocities with zero total momentum.
+// Initial configurations generated from the scene: random non-overlapping placement or a lattice
+// (registered as placement plugins, libgran/plugins/placement.hpp), and Maxwellian velocities with
+// zero total momentum. Placements leave angular velocities unallocated; a scene whose contacts
+// need them allocates them before drawing velocities.
 #include <stdexcept>
 #include <string>
 
 #include "libgran/core/box.hpp"
 #include "libgran/core/particles.hpp"
 #include "libgran/core/random.hpp"
-#include "species/species.hpp"
+#include "libgran/core/species.hpp"
 
 namespace gran {
 

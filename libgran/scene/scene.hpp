@@ -1,44 +1,33 @@
 #pragma once
 // A scene file, validated and resolved: every key checked against its declaration, defaults filled
-// in, the box derived, the initial configuration described. `resolved` is written to results so a
-// run can be repeated exactly.
+// in, the box derived, the contacts resolved, every plugin built once to check its cross-references
+// and what the chosen engine can do. Everything `gran run` would refuse is refused here (`gran
+// check`), without building an engine. `resolved` is written to results so a run can be repeated
+// exactly. Engine-free: no engine header is included.
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "libgran/engines/dem/contact_table.hpp"
-#include "libgran/engines/dem/engine.hpp"
-#include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/core/params.hpp"
-#include "libgran/run/watchdog.hpp"
-#include "species/species.hpp"
+#include "libgran/core/species.hpp"
+#include "libgran/plugins/law.hpp"
+#include "libgran/plugins/scene_info.hpp"
+#include "libgran/scene/schedule.hpp"
 
 namespace gran {
 
+struct EnginePlugin;
+struct PlacementPlugin;
+
+// One entry of a plugin list (drivers, observables) or a plugin chosen by a key (engine.type,
+// initial.placement).
 struct PluginEntry {
     std::string type;
     std::string name;  // result group name (defaults to type)
     Params params;
-};
-
-enum class ScheduleUnit { CollisionsPerParticle, Time };
-
-struct Schedule {
-    ScheduleUnit unit = ScheduleUnit::CollisionsPerParticle;
-    double equilibration = 0;
-    double measurement = 0;
-    double sample_interval = 1;
-};
-
-// engine.type: dem. Pair restitution comes from the species pair laws (alpha); `pair` holds the
-// rest of a grain-grain contact, `wall` of a grain-wall contact (e_w from the wall drivers).
-struct DemSceneSettings {
-    DemLaw law = DemLaw::linear_dashpot;
-    DemContactSpec pair, wall;
-    DemSettings settings;
-    double probe_speed = 1;  // impact speed of the isolated test collisions reported by a run
 };
 
 struct Scene {
@@ -49,22 +38,26 @@ struct Scene {
     int dimension = 2;
     std::uint64_t seed = 1;
     SpeciesTable species;
+    ContactTable contacts;  // interactions, resolved for every contact
     std::vector<double> box_length;
     std::vector<bool> periodic;
     double packing_fraction = 0;
-    std::string placement = "random";
-    double temperature = 1;
-    EngineSettings engine;
-    std::string engine_type = "event_driven";  // or "dem"
-    DemSceneSettings dem;
+    const PlacementPlugin* placement = nullptr;  // initial.placement
+    double temperature = 1;                      // initial.temperature
+    std::array<double, 3> gravity{0, 0, 0};
+    const EnginePlugin* engine = nullptr;  // engine.type
+    PluginEntry engine_settings;           // the `engine` section, validated by its schema
     Schedule schedule;
+    Params run_settings;        // the `run` section, for errors at its keys
     WatchdogSettings watchdog;  // run.watchdog
     std::vector<PluginEntry> drivers;
     std::vector<PluginEntry> observables;
     std::size_t frames = 0;
     double progress_interval = 10;
-    std::string box_location;     // "file:line:col: box" for errors found when placing particles
-    std::string engine_location;  // "file:line:col: engine" for errors found building the engine
+    std::string box_location;           // "file:line:col: box" for errors found when placing
+    std::string interactions_location;  // "file:line:col: interactions"
+    // What plugin factories read (index 0; peak velocity and drive period from the drivers).
+    SceneInfo info;
 };
 
 // Reads and validates a scene file; `overrides` are "dotted.key=value" (--set) applied first.
@@ -73,6 +66,9 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 Scene parse_scene(const YAML::Node& root, const std::string& file);
 // Applies one "a.b.0.c=value" override to a YAML document.
 void apply_override(YAML::Node& root, const std::string& assignment);
+
+// The SceneInfo of plugin `index` of a list.
+SceneInfo plugin_info(const Scene& scene, std::size_t index);
 
 // Schemas of the scene sections, for `gran list scene`.
 struct SectionDoc {

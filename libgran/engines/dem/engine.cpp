@@ -23,28 +23,47 @@ std::string num(double x) {
 
 }  // namespace
 
+double dem_time_step(const ContactTable& contacts, bool walls, double dt, double dt_fraction) {
+    const auto& soft = contacts.law->soft_contact;
+    if (!soft) fail("law '" + contacts.law->name + "' has no soft-contact form");
+    // Verlet resolves a contact with at least a few steps; t_c / 5 is the limit.
+    double tc = kInf;
+    const std::size_t ns = contacts.species;
+    for (std::size_t k = 0; k < ns * ns; ++k) tc = std::min(tc, soft->duration(*contacts.table, k));
+    if (walls) {
+        for (std::size_t w = 0; w < contacts.walls.size(); ++w) {
+            for (std::size_t s = 0; s < ns; ++s)
+                tc = std::min(tc, soft->duration(*contacts.table, contacts.wall_index(w, s)));
+        }
+    }
+    const double step = dt > 0 ? dt : dt_fraction * tc;
+    if (!(step > 0) || !std::isfinite(step)) fail("the time step must be finite and > 0");
+    if (step > tc / 5) {
+        fail("dt = " + num(step) + " exceeds t_c / 5 = " + num(tc / 5) + " (t_c = " + num(tc) +
+             " is the shortest contact duration): velocity Verlet needs at least 5 steps per "
+             "contact for a stable, accurate collision (restitution and duration); use dt <= "
+             "t_c / 50 (the default when dt = 0)");
+    }
+    return step;
+}
+
 template <int D>
 DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
-                        const DemContactTable& contacts, Particles<D> particles,
-                        DemSettings settings)
-    : box_(box), table_(contacts), p_(std::move(particles)), settings_(settings) {
+                        const ContactTable& contacts, Particles<D> particles, DemSettings settings)
+    : box_(box), contacts_(contacts), p_(std::move(particles)), settings_(settings) {
     const std::size_t ns = species.size();
-    if (ns == 0 || table_.species_count() != ns) {
-        fail("the contact table has " + std::to_string(table_.species_count()) +
+    if (ns == 0 || contacts_.species != ns) {
+        fail("the contact table has " + std::to_string(contacts_.species) +
              " species, the species table " + std::to_string(ns));
     }
-    double dmax = 0;
-    for (const Species& s : species.species) {
-        if (!(s.mass > 0) || !(s.diameter > 0) || !(s.inertia_factor > 0)) {
-            fail("species '" + s.name + "' needs mass, diameter and inertia factor > 0");
-        }
-        mass_.push_back(s.mass);
-        radius_.push_back(0.5 * s.diameter);
-        inertia_.push_back(s.inertia_factor * s.mass * s.diameter * s.diameter / 4);  // q m s^2/4
-        inv_mass_.push_back(1.0 / mass_.back());
-        inv_inertia_.push_back(1.0 / inertia_.back());
-        dmax = std::max(dmax, s.diameter);
+    const auto* loops = Registry<DemLawLoops<D>>::instance().find(contacts_.law->name);
+    if (!loops || !contacts_.law->soft_contact) {
+        fail("law '" + contacts_.law->name + "' has no soft-contact form (the dem engine takes " +
+             Registry<DemLawLoops<D>>::instance().names() + ")");
     }
+    loops_ = *loops;
+    history_ = contacts_.law->soft_contact->history;
+    set_species(species);
     const std::size_t n = p_.size();
     if (p_.v.size() != n || p_.species.size() != n) fail("particle arrays of unequal sizes");
     for (std::uint32_t s : p_.species) {
@@ -58,31 +77,49 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
             fail("gravity has a component beyond the " + std::to_string(D) + " dimensions");
         }
     }
-
-    // Time step: Verlet resolves a contact with at least a few steps; t_c / 5 is the limit.
     bool bounded = false;
     for (int a = 0; a < D; ++a) bounded = bounded || !box_.periodic[std::size_t(a)];
-    const double tc = table_.shortest_duration(bounded);
-    dt_ = settings_.dt > 0 ? settings_.dt : settings_.dt_fraction * tc;
-    if (!(dt_ > 0) || !std::isfinite(dt_)) fail("the time step must be finite and > 0");
-    if (dt_ > tc / 5) {
-        fail("dt = " + num(dt_) + " exceeds t_c / 5 = " + num(tc / 5) + " (t_c = " + num(tc) +
-             " is the shortest contact duration): velocity Verlet needs at least 5 steps per "
-             "contact for a stable, accurate collision (restitution and duration); use dt <= "
-             "t_c / 50 (the default when dt = 0)");
-    }
+    dt_ = dem_time_step(contacts_, bounded, settings_.dt, settings_.dt_fraction);
+    configure_neighbours();
+    allocate_state();
+    place_walls();
+    list_.configure(box_, neighbour_cutoffs(), ns, n, history_);
+    rebuild();
+    reevaluate_forces();
+}
 
-    // Neighbour list: cutoff sigma_ij + skin, below half of every periodic length.
-    if (!(settings_.skin >= 0)) fail("the skin must be >= 0");
-    skin_ = settings_.skin * dmax;
-    std::vector<double> cutoff(ns * ns);
-    double widest = 0;
+template <int D>
+void DemEngine<D>::set_species(const SpeciesTable& species) {
+    for (const Species& s : species.species) {
+        if (!(s.mass > 0) || !(s.diameter > 0) || !(s.inertia_factor > 0)) {
+            fail("species '" + s.name + "' needs mass, diameter and inertia factor > 0");
+        }
+        mass_.push_back(s.mass);
+        radius_.push_back(0.5 * s.diameter);
+        inertia_.push_back(s.inertia_factor * s.mass * s.diameter * s.diameter / 4);  // q m s^2/4
+        inv_mass_.push_back(1.0 / mass_.back());
+        inv_inertia_.push_back(1.0 / inertia_.back());
+        dmax_ = std::max(dmax_, s.diameter);
+    }
+    const std::size_t ns = species.size();
+    sigma_.resize(ns * ns);
     for (std::size_t a = 0; a < ns; ++a) {
         for (std::size_t b = 0; b < ns; ++b) {
-            cutoff[a * ns + b] = radius_[a] + radius_[b] + skin_;
-            widest = std::max(widest, cutoff[a * ns + b]);
+            sigma_[a * ns + b] = 0.5 * (species.species[a].diameter + species.species[b].diameter);
         }
     }
+}
+
+// Neighbour list: cutoff sigma_ij + skin, below half of every periodic length.
+template <int D>
+void DemEngine<D>::configure_neighbours() {
+    if (!(settings_.skin >= 0)) fail("the skin must be >= 0");
+    skin_ = settings_.skin * dmax_;
+    const double widest = [&] {
+        double w = 0;
+        for (double c : neighbour_cutoffs()) w = std::max(w, c);
+        return w;
+    }();
     for (int a = 0; a < D; ++a) {
         if (box_.periodic[std::size_t(a)] && !(widest < 0.5 * box_.length[a])) {
             fail("the neighbour cutoff sigma + skin = " + num(widest) +
@@ -90,11 +127,24 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
                  " along axis " + std::to_string(a) + " (minimum image)");
         }
     }
+}
 
-    // Rotation: needed as soon as some contact has friction.
-    if (table_.needs_rotation() && !p_.rotating()) p_.w.assign(n, ang_zero<D>());
+template <int D>
+std::vector<double> DemEngine<D>::neighbour_cutoffs() const {
+    const std::size_t ns = mass_.size();
+    std::vector<double> cutoff(ns * ns);
+    for (std::size_t a = 0; a < ns; ++a) {
+        for (std::size_t b = 0; b < ns; ++b) cutoff[a * ns + b] = radius_[a] + radius_[b] + skin_;
+    }
+    return cutoff;
+}
+
+// Per-particle state; angular velocities as soon as some contact has friction.
+template <int D>
+void DemEngine<D>::allocate_state() {
+    const std::size_t n = p_.size();
+    if (contacts_.rotating && !p_.rotating()) p_.w.assign(n, ang_zero<D>());
     if (p_.rotating() && p_.w.size() != n) fail("angular velocities of the wrong size");
-
     t_start_ = 0;
     for (double t : p_.t) t_start_ = std::max(t_start_, t);
     p_.t.assign(n, t_start_);
@@ -106,21 +156,27 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
         w_pred_.assign(n, ang_zero<D>());
     }
     wall_touching_.assign(n * 2 * D, 0);
-    if (table_.needs_history()) wall_spring_.assign(n * 2 * D, Vec<D>::Zero());
-    for (int a = 0; a < D; ++a) {
-        if (box_.periodic[std::size_t(a)]) continue;
-        walls_[code(a, 0)] = {true, WallMotion::fixed(), 0.0, table_.walls()};
-        walls_[code(a, 1)] = {true, WallMotion::fixed(), box_.length[a], table_.walls()};
-    }
+    if (history_) wall_spring_.assign(n * 2 * D, Vec<D>::Zero());
     for (auto& r : p_.r) {
         for (int a = 0; a < D; ++a) {
             if (box_.periodic[std::size_t(a)])
                 r[a] -= box_.length[a] * std::floor(r[a] / box_.length[a]);
         }
     }
-    list_.configure(box_, std::move(cutoff), ns, n, table_.needs_history());
-    rebuild();
-    reevaluate_forces();
+}
+
+// Static walls at 0 and L of every bounded axis, with the contacts of the wall partner `box`.
+template <int D>
+void DemEngine<D>::place_walls() {
+    const std::size_t box_partner = contacts_.wall_named("box");
+    for (int a = 0; a < D; ++a) {
+        if (box_.periodic[std::size_t(a)]) continue;
+        if (box_partner == contacts_.walls.size()) {
+            fail("the box has a bounded axis but the contacts have no wall partner 'box'");
+        }
+        walls_[code(a, 0)] = {true, WallMotion::fixed(), 0.0, box_partner};
+        walls_[code(a, 1)] = {true, WallMotion::fixed(), box_.length[a], box_partner};
+    }
 }
 
 template <int D>
@@ -229,250 +285,20 @@ void DemEngine<D>::compute_forces(double dt_advance) {
 }
 
 template <int D>
-void DemEngine<D>::accumulate_forces(double dt_advance) {
-    const auto run = [&]<DemLaw L>() {
-        if (p_.rotating()) {
-            pair_forces<L, true>(dt_advance);
-            wall_forces<L, true>(dt_advance);
-        } else {
-            pair_forces<L, false>(dt_advance);
-            wall_forces<L, false>(dt_advance);
-        }
-    };
-    switch (table_.law()) {
-        case DemLaw::linear_dashpot:
-            run.template operator()<DemLaw::linear_dashpot>();
-            break;
-        case DemLaw::cundall_strack:
-            run.template operator()<DemLaw::cundall_strack>();
-            break;
-        case DemLaw::hertz_mindlin:
-            run.template operator()<DemLaw::hertz_mindlin>();
-            break;
-    }
-}
-
-// Pair contacts over the half neighbour list: force on i, its opposite on j (Newton's third law
-// exactly, so the total momentum changes by round-off only). Raw pointers throughout (the byte
-// stores to the contact flags may alias anything, which would reload every vector's data pointer
-// per entry); nothing is written for an entry that neither touches nor touched.
-template <int D>
-template <DemLaw L, bool Rot>
-void DemEngine<D>::pair_forces(double dt_advance) {
-    constexpr bool kHistory = L != DemLaw::linear_dashpot;
-    const std::size_t ns = mass_.size();
-    const DemContactParams* params = table_.pairs().data();
-    const AngVec<D> zero = ang_zero<D>();
-    std::uint64_t formed = 0, active = 0;
-    double worst = counters_.max_overlap;
-    // Minimum image per component without branches on the axis kind: a bounded axis has period
-    // 0 and half-period infinity. Scalars, not a vector patched in memory (store forwarding).
-    std::array<double, D> period{}, half{};
-    for (std::size_t k = 0; k < std::size_t(D); ++k) {
-        const bool per = box_.periodic[k];
-        period[k] = per ? box_.length[int(k)] : 0.0;
-        half[k] = per ? 0.5 * box_.length[int(k)] : kInf;
-    }
-    const std::size_t entries = list_.entries();
-    const std::uint32_t* owner = list_.owner.data();
-    const std::uint32_t* partner = list_.partner.data();
-    std::uint8_t* touching = list_.touching.data();
-    Vec<D>* spring = list_.spring.data();
-    const Vec<D>* r = p_.r.data();
-    const Vec<D>* v = p_.v.data();
-    const Vec<D>* v_pred = v_pred_.data();
-    const AngVec<D>* w = p_.w.data();
-    const AngVec<D>* w_pred = w_pred_.data();
-    const std::uint32_t* species = p_.species.data();
-    const double* radius = radius_.data();
-    Vec<D>* f = f_.data();
-    AngVec<D>* tau = tau_.data();
-    // One flat loop over the entries (no per-row branches: most rows of a dilute gas are empty).
-    for (std::size_t k = 0; k < entries; ++k) {
-        const std::uint32_t i = owner[k], j = partner[k];
-        const std::uint32_t si = species[i], sj = species[j];
-        const DemContactParams& P = params[si * ns + sj];
-        std::array<double, D> dc;
-        double dist2 = 0;
-        for (std::size_t a = 0; a < std::size_t(D); ++a) {
-            double x = r[i][int(a)] - r[j][int(a)];
-            x = x > half[a] ? x - period[a] : (x < -half[a] ? x + period[a] : x);
-            dc[a] = x;
-            dist2 += x * x;
-        }
-        if (!(dist2 < P.sigma * P.sigma)) {
-            if (touching[k]) touching[k] = 0;
-            continue;
-        }
-        Vec<D> d;
-        for (std::size_t a = 0; a < std::size_t(D); ++a) d[int(a)] = dc[a];
-        const double dist = std::sqrt(dist2);
-        const Vec<D> nrm = (1.0 / dist) * d;  // from j to i
-        const double delta = P.sigma - dist;  // (A6)
-        const bool forms = touching[k] == 0;
-        touching[k] = 1;
-        ++active;
-        if (forms) ++formed;
-        if (delta > worst * P.sigma) worst = delta / P.sigma;
-        const double li = radius[si], lj = radius[sj];
-        AngVec<D> wpi = zero, wpj = zero, whi = zero, whj = zero;
-        if constexpr (Rot) {
-            wpi = w_pred[i];
-            wpj = w_pred[j];
-            whi = w[i];
-            whj = w[j];
-        }
-        // (A3) at the predicted velocities: the dampers' relative velocity.
-        const Vec<D> g = contact_velocity<D>(v_pred[i], v_pred[j], wpi, wpj, li, lj, nrm);
-        const ContactForce<D> c = [&] {
-            if constexpr (kHistory) {
-                Vec<D>& xi = spring[k];
-                if (forms) xi.setZero();
-                // The spring integrates the half-step velocities that moved the positions; a
-                // new contact only over its in-contact part delta / closing speed.
-                const Vec<D> gh = contact_velocity<D>(v[i], v[j], whi, whj, li, lj, nrm);
-                const double closing = -gh.dot(nrm);
-                double dt_in = dt_advance;
-                if (forms && closing * dt_in > delta) dt_in = delta / closing;
-                advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
-                return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, xi);
-            } else {
-                (void)whi;
-                (void)whj;
-                (void)spring;
-                (void)v;
-                Vec<D> unused;
-                return dem_contact_force<L, D>(P, delta, nrm, g, li, lj, unused);
-            }
-        }();
-        f[i] += c.force;
-        f[j] -= c.force;
-        if constexpr (Rot) {
-            tau[i] += c.torque_i;
-            tau[j] += c.torque_j;
-        }
-    }
-    counters_.contacts += formed;
-    counters_.active_contacts = active;
-    counters_.max_overlap = worst;
-}
-
-// Plane walls: the particle against an infinite mass (m_eff = m_i, lever arm 0 on the wall side)
-// moving along its normal with velocity u(t): v_j = u n_axis in the relative velocity (A3).
-template <int D>
-template <DemLaw L, bool Rot>
-void DemEngine<D>::wall_forces(double dt_advance) {
-    constexpr bool kHistory = L != DemLaw::linear_dashpot;
-    constexpr std::size_t kWalls = 2 * D;
-    const std::size_t n = p_.size();
-    const AngVec<D> zero = ang_zero<D>();
-    const double t = now();
-    double worst = counters_.max_overlap;
-    for (std::size_t c = 0; c < kWalls; ++c) {
-        const Wall& w = walls_[c];
-        if (!w.present) continue;
-        const int a = int(c / 2);
-        const double inward = c % 2 == 0 ? 1.0 : -1.0;
-        const double surface = w.base + w.motion.position(t);
-        Vec<D> nrm = Vec<D>::Zero();
-        nrm[a] = inward;  // into the gas
-        Vec<D> vw = Vec<D>::Zero();
-        vw[a] = w.motion.velocity(t);
-        double impulse = 0;
-        std::uint64_t formed = 0;
-        // Raw pointers (the byte stores to the contact flags may alias anything); a flag is
-        // written only when it changes.
-        const std::uint32_t* species = p_.species.data();
-        const double* radius = radius_.data();
-        const Vec<D>* r = p_.r.data();
-        std::uint8_t* touching_of = wall_touching_.data() + c;
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::uint32_t s = species[i];
-            const double R = radius[s];
-            const double gap = inward * (r[i][a] - surface) - R;
-            std::uint8_t& touching = touching_of[i * kWalls];
-            if (!(gap < 0)) {
-                if (touching) touching = 0;
-                continue;
-            }
-            const double delta = -gap;
-            const bool forms = touching == 0;
-            touching = 1;
-            if (forms) ++formed;
-            const DemContactParams& P = w.params[s];
-            if (delta > worst * 2 * R) worst = 0.5 * delta / R;
-            AngVec<D> wpi = zero, whi = zero;
-            if constexpr (Rot) {
-                wpi = w_pred_[i];
-                whi = p_.w[i];
-            }
-            const Vec<D> g = contact_velocity<D>(v_pred_[i], vw, wpi, zero, R, 0.0, nrm);
-            const ContactForce<D> cf = [&] {
-                if constexpr (kHistory) {
-                    Vec<D>& xi = wall_spring_[i * kWalls + c];
-                    if (forms) xi.setZero();
-                    const Vec<D> gh = contact_velocity<D>(p_.v[i], vw, whi, zero, R, 0.0, nrm);
-                    const double closing = -gh.dot(nrm);
-                    double dt_in = dt_advance;
-                    if (forms && closing * dt_in > delta) dt_in = delta / closing;
-                    advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
-                    return dem_contact_force<L, D>(P, delta, nrm, g, R, 0.0, xi);
-                } else {
-                    (void)whi;
-                    Vec<D> unused;
-                    return dem_contact_force<L, D>(P, delta, nrm, g, R, 0.0, unused);
-                }
-            }();
-            f_[i] += cf.force;
-            if constexpr (Rot) tau_[i] += cf.torque_i;
-            impulse += cf.f_n;
-        }
-        wall_impulse_[c] += impulse * dt_advance;
-        wall_hits_[c] += formed;
-        counters_.wall_contacts += formed;
-    }
-    counters_.max_overlap = worst;
-}
-
-template <int D>
 DemEnergies DemEngine<D>::energies() const {
     DemEnergies e;
-    const std::size_t n = p_.size();
-    const DemLaw law = table_.law();
-    const bool history = table_.needs_history();
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < p_.size(); ++i) {
         const std::uint32_t s = p_.species[i];
         e.translational += 0.5 * mass_[s] * p_.v[i].squaredNorm();
         if (p_.rotating()) e.rotational += 0.5 * inertia_[s] * ang_squared<D>(p_.w[i]);
         e.gravitational -= mass_[s] * g_.dot(p_.r[i]);
-        for (std::uint32_t k = list_.start[i]; k < list_.start[i + 1]; ++k) {
-            const std::uint32_t j = list_.partner[k];
-            const DemContactParams& P = table_.pair(s, p_.species[j]);
-            const double dist = box_.separation(p_.r[i], p_.r[j]).norm();
-            if (!(dist < P.sigma)) continue;
-            const double xi2 = history ? list_.spring[k].squaredNorm() : 0.0;
-            e.elastic += dem_contact_energy(law, P, P.sigma - dist, xi2);
-        }
     }
-    const double t = now();
-    for (std::size_t c = 0; c < 2 * D; ++c) {
-        if (!walls_[c].present) continue;
-        const int a = int(c / 2);
-        const double inward = c % 2 == 0 ? 1.0 : -1.0;
-        const double surface = wall_position(int(c), t);
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::uint32_t s = p_.species[i];
-            const double gap = inward * (p_.r[i][a] - surface) - radius_[s];
-            if (!(gap < 0)) continue;
-            const double xi2 = history ? wall_spring_[i * 2 * D + c].squaredNorm() : 0.0;
-            e.elastic += dem_contact_energy(law, walls_[c].params[s], -gap, xi2);
-        }
-    }
+    e.elastic = (this->*loops_.elastic_energy)();
     return e;
 }
 
 template <int D>
-void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion, double restitution) {
+void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion, std::size_t partner) {
     if (axis < 0 || axis >= D || side < 0 || side > 1 || box_.periodic[std::size_t(axis)]) {
         fail("set_wall: walls need a bounded (non-periodic) axis and side 0 or 1");
     }
@@ -481,27 +307,24 @@ void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion, double
             "set_wall: the sawtooth limit has no position; use a sawtooth_ramp, a sinusoid or a "
             "parabolic piston");
     }
-    double dmax = 0;
-    for (double r : radius_) dmax = std::max(dmax, 2 * r);
+    if (partner >= contacts_.walls.size()) fail("set_wall: no such wall partner");
     const double reach = motion.reach();
-    if (2.0 * reach + dmax > box_.length[axis]) {
+    if (2.0 * reach + dmax_ > box_.length[axis]) {
         fail("set_wall: the wall's excursion leaves no room for particles");
     }
-    std::vector<DemContactParams> params = table_.walls();
-    if (restitution >= 0) {
-        for (std::size_t s = 0; s < params.size(); ++s) {
-            params[s] = table_.wall_with_restitution(s, restitution);
-            if (dt_ > params[s].duration / 5) {
-                fail("set_wall: with restitution " + num(restitution) + " the wall contact lasts " +
-                     num(params[s].duration) + " < 5 dt (dt = " + num(dt_) +
-                     "): velocity Verlet needs at least 5 steps per contact");
-            }
+    const auto& soft = *contacts_.law->soft_contact;
+    for (std::size_t s = 0; s < mass_.size(); ++s) {
+        const double duration = soft.duration(*contacts_.table, contacts_.wall_index(partner, s));
+        if (dt_ > duration / 5) {
+            fail("set_wall: the contact of wall '" + contacts_.walls[partner] + "' lasts " +
+                 num(duration) + " < 5 dt (dt = " + num(dt_) +
+                 "): velocity Verlet needs at least 5 steps per contact");
         }
     }
     Wall& w = walls_[code(axis, side)];
-    w.params = std::move(params);
     w.present = true;
     w.motion = motion;
+    w.partner = partner;
     w.base = side == 0 ? reach : box_.length[axis] - reach;  // excursion inside [0, L]
     reevaluate_forces();
 }

@@ -3,8 +3,10 @@
 // the method of Bhateja, Sharma & Singh, Phys. Fluids 28, 043301 (2016), Appendix (issue #5).
 //
 // Equations of motion (A1), (A2): m_i dv_i/dt = sum_j f_ij + m_i g, I_i dw_i/dt = sum_j tau_ij,
-// I_i = q m_i sigma_i^2 / 4, with the contact forces of species/contact_laws.hpp through
-// libgran/dem_contact_table.hpp. Lever arms are the radii (Eq. A3: l = R).
+// I_i = q m_i sigma_i^2 / 4, with the contact forces of the scene's soft-contact law (one law type
+// for every contact, libgran/plugins/law.hpp; its force loop, templated on the law, is in
+// libgran/engines/dem/law_loop.hpp and instantiated by the law's registration). Lever arms are the
+// radii (Eq. A3: l = R).
 //
 // Integrator: velocity Verlet for translation and rotation, one step of length dt:
 //   1. half kick    v <- v + (dt/2) a(t),  w <- w + (dt/2) alpha(t)          (v(t + dt/2))
@@ -23,19 +25,23 @@
 // with a WallMotion (fixed, sinusoid, parabolic_piston, sawtooth_ramp). Convention of the
 // event-driven engine: the lower surface is at reach + position(t), the upper at L - reach +
 // position(t), so each excursion stays inside [0, L]. A wall is a contact partner of infinite mass
-// (m_eff = m_i) with the species' wall parameters; the relative velocity uses the wall velocity
-// along the normal (tangential wall velocity 0) and no wall rotation (lever arm 0).
+// (m_eff = m_i) with its own contact parameters (a wall partner of the scene's interactions); the
+// relative velocity uses the wall velocity along the normal (tangential wall velocity 0) and no
+// wall rotation (lever arm 0).
 #include <array>
 #include <atomic>
 #include <cstdint>
 #include <vector>
 
-#include "libgran/core/wall_motion.hpp"
+#include <string>
+
 #include "libgran/core/box.hpp"
-#include "libgran/engines/dem/contact_table.hpp"
-#include "libgran/engines/dem/neighbour_list.hpp"
 #include "libgran/core/particles.hpp"
-#include "species/species.hpp"
+#include "libgran/core/species.hpp"
+#include "libgran/core/wall_motion.hpp"
+#include "libgran/engines/dem/contact_force.hpp"
+#include "libgran/engines/dem/neighbour_list.hpp"
+#include "libgran/plugins/law.hpp"
 
 namespace gran {
 
@@ -64,16 +70,33 @@ struct DemEnergies {
 };
 
 template <int D>
+class DemEngine;
+
+// A soft-contact law's loops on this engine, registered by register_law<L> (law_loop.hpp) under
+// the law's name: the engine calls them through these pointers, once per step.
+template <int D>
+struct DemLawLoops {
+    std::string name;
+    void (DemEngine<D>::*accumulate_forces)(double dt_advance) = nullptr;
+    double (DemEngine<D>::*elastic_energy)() const = nullptr;
+};
+
+// The time step of a scene: `dt` if > 0, else dt_fraction x the shortest contact duration (over
+// the grain-grain contacts, and the grain-wall ones when `walls`). Throws std::invalid_argument
+// when it exceeds t_c / 5 or is not finite.
+double dem_time_step(const ContactTable& contacts, bool walls, double dt, double dt_fraction);
+
+template <int D>
 class DemEngine {
   public:
     enum class Stop { TimeLimit, Interrupted };
 
-    // Every bounded axis starts with static walls at 0 and L (set_wall, remove_wall change
-    // them). Allocates angular velocities if some contact has friction and `particles` has none.
-    // Throws std::invalid_argument if dt > t_c / 5 (t_c the shortest contact duration of the
-    // table, walls included when the box has a bounded axis), if a cutoff sigma + skin reaches
-    // half a periodic length, or for inconsistent inputs.
-    DemEngine(const Box<D>& box, const SpeciesTable& species, const DemContactTable& contacts,
+    // Every bounded axis starts with static walls at 0 and L with the contacts of the wall
+    // partner `box` (set_wall, remove_wall change them). Allocates angular velocities if some
+    // contact has friction and `particles` has none. Throws std::invalid_argument if the law has
+    // no soft-contact form, if dt > t_c / 5 (dem_time_step), if a cutoff sigma + skin reaches half
+    // a periodic length, or for inconsistent inputs.
+    DemEngine(const Box<D>& box, const SpeciesTable& species, const ContactTable& contacts,
               Particles<D> particles, DemSettings settings);
 
     // Whole steps until now() >= t_limit: the last step is not shortened, so now() ends in
@@ -87,7 +110,7 @@ class DemEngine {
     const Box<D>& box() const { return box_; }
     const Vec<D>& gravity() const { return g_; }
     const DemCounters& counters() const { return counters_; }
-    const DemContactTable& contact_table() const { return table_; }
+    const ContactTable& contacts() const { return contacts_; }
     std::size_t species_count() const { return mass_.size(); }
     double species_mass(std::uint32_t s) const { return mass_[s]; }
     double species_diameter(std::uint32_t s) const { return 2 * radius_[s]; }
@@ -97,18 +120,14 @@ class DemEngine {
     const std::vector<AngVec<D>>& torques() const { return tau_; }
     DemEnergies energies() const;
     const DemNeighbourList<D>& neighbour_list() const { return list_; }
-    // Contact parameters of a wall (index 2 * axis + side) for species s.
-    const DemContactParams& wall_contact(int code, std::uint32_t s) const {
-        return walls_[std::size_t(code)].params[s];
-    }
+    // Wall partner (index into contacts().walls) of a wall (index 2 * axis + side).
+    std::size_t wall_partner(int code) const { return walls_[std::size_t(code)].partner; }
 
-    // Walls (side 0: lower, 1: upper) of a bounded axis. Sawtooth motion is refused (it has no
-    // position). restitution in (0, 1]: this wall's e_w (the table's wall spring, friction and
-    // damping, with the dashpot of Eq. A9 for e_w); < 0: the table's wall contact. Throws
-    // std::invalid_argument if that contact is shorter than 5 dt. Forces are re-evaluated at the
-    // current time.
-    void set_wall(int axis, int side, const WallMotion& motion = WallMotion::fixed(),
-                  double restitution = -1);
+    // Walls (side 0: lower, 1: upper) of a bounded axis, with the contacts of wall partner
+    // `partner` (index into contacts().walls). Sawtooth motion is refused (it has no position).
+    // Throws std::invalid_argument if one of its contacts is shorter than 5 dt. Forces are
+    // re-evaluated at the current time.
+    void set_wall(int axis, int side, const WallMotion& motion, std::size_t partner);
     void remove_wall(int axis, int side);
     bool wall_is_set(int axis, int side) const { return walls_[code(axis, side)].present; }
     // Surface position of a wall at time t (index 2 * axis + side).
@@ -122,28 +141,42 @@ class DemEngine {
     // Contacts formed per wall (index 2 * axis + side).
     const std::array<std::uint64_t, 2 * D>& wall_hits() const { return wall_hits_; }
 
+    // The force loop and contact energy of law L (law_loop.hpp), reached through DemLawLoops.
+    template <class L>
+    void accumulate_forces_with(double dt_advance);
+    template <class L>
+    double elastic_energy_with() const;
+
   private:
     struct Wall {
         bool present = false;
         WallMotion motion;
         double base = 0;
-        std::vector<DemContactParams> params;  // per species
+        std::size_t partner = 0;  // wall partner in contacts_
     };
     static std::size_t code(int axis, int side) { return std::size_t(2 * axis + side); }
 
+    void set_species(const SpeciesTable& species);
+    void configure_neighbours();
+    std::vector<double> neighbour_cutoffs() const;  // sigma_ij + skin, ns x ns
+    void allocate_state();
+    void place_walls();
     void rebuild();
     // Forces at the present state with the dampers at the current velocities (construction,
     // wall changes); springs and wall impulses do not advance.
     void reevaluate_forces();
-    void compute_forces(double dt_advance);     // zeroes, then accumulates
-    void accumulate_forces(double dt_advance);  // adds to f_, tau_
-    template <DemLaw L, bool Rot>
+    void compute_forces(double dt_advance);  // zeroes, then accumulates
+    void accumulate_forces(double dt_advance) { (this->*loops_.accumulate_forces)(dt_advance); }
+    template <class L, bool Rot>
     void pair_forces(double dt_advance);
-    template <DemLaw L, bool Rot>
+    template <class L, bool Rot>
     void wall_forces(double dt_advance);
 
     Box<D> box_;
-    DemContactTable table_;
+    ContactTable contacts_;
+    DemLawLoops<D> loops_;
+    bool history_ = false;     // the law keeps a tangential spring per contact
+    std::vector<double> sigma_;  // contact distance R_i + R_j per species pair (ns x ns)
     Particles<D> p_;
     DemSettings settings_;
     DemCounters counters_;
@@ -152,6 +185,7 @@ class DemEngine {
     double t_start_ = 0;
     std::uint64_t steps_ = 0;  // since t_start_ (now() = t_start_ + steps_ dt, no accumulation)
     double skin_ = 0;
+    double dmax_ = 0;  // largest diameter
 
     // species, flattened
     std::vector<double> mass_, radius_, inertia_, inv_mass_, inv_inertia_;

@@ -39,10 +39,21 @@ Vec<D> unit_x() {
 
 }  // namespace
 
+// The requested restitution and closed-form duration of contact `index`.
+struct Requested {
+    double restitution, duration, sigma;
+};
+Requested requested(const ContactTable& table, std::size_t index, double sigma) {
+    const auto& soft = *table.law->soft_contact;
+    return {soft.restitution(*table.table, index), soft.duration(*table.table, index), sigma};
+}
+
 template <int D>
-DemProbeResult probe_pair_collision(const SpeciesTable& species, const DemContactTable& table,
+DemProbeResult probe_pair_collision(const SpeciesTable& species, const ContactTable& table,
                                     std::size_t a, std::size_t b, double speed, double dt) {
-    const DemContactParams& P = table.pair(a, b);
+    const Requested P = requested(
+        table, table.pair_index(a, b),
+        0.5 * (species.species[a].diameter + species.species[b].diameter));
     const double dmax = species.max_diameter();
     Box<D> box;
     box.length = Vec<D>::Constant(8 * dmax + 8 * P.sigma);
@@ -72,9 +83,10 @@ DemProbeResult probe_pair_collision(const SpeciesTable& species, const DemContac
 }
 
 template <int D>
-DemProbeResult probe_wall_collision(const SpeciesTable& species, const DemContactTable& table,
-                                    std::size_t s, double e_w, double speed, double dt) {
-    const DemContactParams P = table.wall_with_restitution(s, e_w);
+DemProbeResult probe_wall_collision(const SpeciesTable& species, const ContactTable& table,
+                                    std::size_t s, std::size_t wall, double speed, double dt) {
+    const Requested P =
+        requested(table, table.wall_index(wall, s), 0.5 * species.species[s].diameter);
     const double dmax = species.max_diameter();
     Box<D> box;
     box.length = Vec<D>::Constant(8 * dmax);
@@ -90,20 +102,20 @@ DemProbeResult probe_wall_collision(const SpeciesTable& species, const DemContac
     DemSettings st;
     st.dt = dt;
     DemEngine<D> engine(box, species, table, std::move(p), st);
-    engine.set_wall(0, 0, WallMotion::fixed(), e_w);
+    engine.set_wall(0, 0, WallMotion::fixed(), wall);
     const auto [e, tc] = collide(
         engine, [&](const DemEngine<D>& en) { return en.particles().r[0][0] < P.sigma; },
         [](const DemEngine<D>& en) { return en.particles().v[0][0]; });
-    return {e_w, e, P.duration, tc, dt / P.duration};
+    return {P.restitution, e, P.duration, tc, dt / P.duration};
 }
 
-template DemProbeResult probe_pair_collision<2>(const SpeciesTable&, const DemContactTable&,
+template DemProbeResult probe_pair_collision<2>(const SpeciesTable&, const ContactTable&,
                                                 std::size_t, std::size_t, double, double);
-template DemProbeResult probe_pair_collision<3>(const SpeciesTable&, const DemContactTable&,
+template DemProbeResult probe_pair_collision<3>(const SpeciesTable&, const ContactTable&,
                                                 std::size_t, std::size_t, double, double);
-template DemProbeResult probe_wall_collision<2>(const SpeciesTable&, const DemContactTable&,
-                                                std::size_t, double, double, double);
-template DemProbeResult probe_wall_collision<3>(const SpeciesTable&, const DemContactTable&,
-                                                std::size_t, double, double, double);
+template DemProbeResult probe_wall_collision<2>(const SpeciesTable&, const ContactTable&,
+                                                std::size_t, std::size_t, double, double);
+template DemProbeResult probe_wall_collision<3>(const SpeciesTable&, const ContactTable&,
+                                                std::size_t, std::size_t, double, double);
 
 }  // namespace gran

@@ -6,7 +6,8 @@
 // e = exp(-zeta pi / sqrt(1 - zeta^2))).
 #include <string>
 
-#include "libgran/engines/dem/contact_table.hpp"
+#include "libgran/core/species.hpp"
+#include "libgran/plugins/law.hpp"
 
 namespace gran {
 
@@ -21,12 +22,12 @@ struct DemProbeResult {
 // Grain-grain: species a and b of `table` meet head-on at relative speed `speed`.
 // Throws std::invalid_argument (from the engine) for an impossible dt.
 template <int D>
-DemProbeResult probe_pair_collision(const SpeciesTable& species, const DemContactTable& table,
+DemProbeResult probe_pair_collision(const SpeciesTable& species, const ContactTable& table,
                                     std::size_t a, std::size_t b, double speed, double dt);
 
-// Grain-wall: species s hits a static wall with restitution e_w at normal speed `speed`.
+// Grain-wall: species s hits a static wall of wall partner `wall` at normal speed `speed`.
 template <int D>
-DemProbeResult probe_wall_collision(const SpeciesTable& species, const DemContactTable& table,
-                                    std::size_t s, double e_w, double speed, double dt);
+DemProbeResult probe_wall_collision(const SpeciesTable& species, const ContactTable& table,
+                                    std::size_t s, std::size_t wall, double speed, double dt);
 
 }  // namespace gran

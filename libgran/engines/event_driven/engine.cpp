@@ -1,32 +1,35 @@
 #include "libgran/engines/event_driven/engine.hpp"
 
+#include "libgran/core/registry.hpp"
+
 #include <stdexcept>
 
 namespace gran {
 
 template <int D>
 EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& table,
-                                        Particles<D> particles, EngineSettings settings)
-    : box_(box), p_(std::move(particles)), settings_(settings) {
+                                        const ContactTable& contacts, Particles<D> particles,
+                                        EngineSettings settings)
+    : box_(box), p_(std::move(particles)), settings_(settings), contacts_(contacts) {
+    const auto* loops = Registry<EventDrivenLawLoops<D>>::instance().find(contacts_.law->name);
+    if (!loops || !contacts_.law->hard_sphere) {
+        throw std::invalid_argument("EventDrivenEngine: law '" + contacts_.law->name +
+                                    "' has no hard-sphere form");
+    }
+    loop_ = loops->advance;
     ns_ = table.size();
+    if (contacts_.species != ns_) {
+        throw std::invalid_argument("EventDrivenEngine: the contacts are of another species table");
+    }
     for (const auto& s : table.species) {
         mass_.push_back(s.mass);
         diameter_.push_back(s.diameter);
         inertia_.push_back(s.inertia_factor);
     }
     sigma_pair_.resize(ns_ * ns_);
-    alpha_pair_.resize(ns_ * ns_);
-    beta_pair_.resize(ns_ * ns_);
-    restitution_pair_.resize(ns_ * ns_);
     for (std::size_t a = 0; a < ns_; ++a) {
-        for (std::size_t b = 0; b < ns_; ++b) {
+        for (std::size_t b = 0; b < ns_; ++b)
             sigma_pair_[a * ns_ + b] = 0.5 * (diameter_[a] + diameter_[b]);
-            alpha_pair_[a * ns_ + b] = table.pair(a, b).alpha;
-            beta_pair_[a * ns_ + b] = table.pair(a, b).beta;
-            restitution_pair_[a * ns_ + b] = table.pair(a, b).restitution;
-            if (table.pair(a, b).restitution.kind != ImpactRestitution::Kind::constant)
-                impact_dependent_ = true;
-        }
     }
     for (int a = 0; a < D; ++a) {
         g_[a] = settings_.gravity[std::size_t(a)];
@@ -38,8 +41,8 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
                                         std::to_string(D) + " dimensions of the box");
     }
     rough_ = p_.rotating();
-    if (table.rough() && !rough_) {
-        throw std::logic_error("EventDrivenEngine: rough pair laws need angular velocities");
+    if (contacts_.rotating && !rough_) {
+        throw std::logic_error("EventDrivenEngine: rough contacts need angular velocities");
     }
     pair_collisions_.assign(ns_ * ns_, 0);
 
@@ -55,11 +58,18 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     now_ = 0;
     for (std::size_t i = 0; i < n; ++i) now_ = std::max(now_, p_.t[i]);
     build_cells();
+    const std::size_t box_partner = contacts_.wall_named("box");
     for (int a = 0; a < D; ++a) {
+        if (!box_.periodic[std::size_t(a)] && box_partner == contacts_.walls.size()) {
+            throw std::invalid_argument(
+                "EventDrivenEngine: the box has a bounded axis but the contacts have no wall "
+                "partner 'box'");
+        }
         for (int side = 0; side < 2; ++side) {
             WallSlot& w = walls_[std::size_t(2 * a + side)];
             w.base = side == 0 ? 0.0 : box_.length[a];
             w.simple = g_[a] == 0.0;
+            w.partner = box_partner;
         }
     }
     id_.resize(n);
@@ -528,77 +538,6 @@ double EventDrivenEngine<D>::axis_event(std::uint32_t i, int a, double best, std
 }
 
 template <int D>
-void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
-    move(i);
-    move(j);
-    const std::uint32_t si = p_.species[i], sj = p_.species[j];
-    const std::size_t pij = si * ns_ + sj;
-    const Vec<D> dr = box_.separation(p_.r[i], p_.r[j]);
-    const double dist = dr.norm();
-    const Vec<D> n = dr / dist;
-    if (dist < sigma_pair_[pij] * (1.0 - 1e-10)) ++counters_.overlap_collisions;
-    double alpha = alpha_pair_[pij];
-    double beta = beta_pair_[pij];
-    if (impact_dependent_) {
-        // r(v) laws take the normal relative speed at impact (McNamara & Falcon 2005, Eq. 1).
-        alpha = restitution(restitution_pair_[pij], (p_.v[i] - p_.v[j]).dot(n));
-    }
-    if (settings_.tc_guard &&
-        (now_ - last_collision_[i] < settings_.tc || now_ - last_collision_[j] < settings_.tc)) {
-        alpha = 1.0;
-        beta = -1.0;
-        ++counters_.tc_collisions;
-    }
-    CollisionRecord<D> rec;
-    if (sink_) {
-        rec.time = t_origin_ + now_;
-        rec.i = id_[i];
-        rec.j = id_[j];
-        rec.si = si;
-        rec.sj = sj;
-        rec.n = n;
-        rec.ri = p_.r[i];
-        rec.vi = p_.v[i];
-        rec.vj = p_.v[j];
-        if (rough_) {
-            rec.wi = p_.w[i];
-            rec.wj = p_.w[j];
-        }
-        rec.alpha = alpha;
-        rec.beta = beta;
-        rec.contact_distance = sigma_pair_[pij];
-    }
-    double impulse;
-    if (rough_) {
-        impulse = rough_collision<D>(p_.v[i], p_.v[j], p_.w[i], p_.w[j], mass_[si], mass_[sj],
-                                     diameter_[si], diameter_[sj], inertia_[si], inertia_[sj], n,
-                                     alpha, beta);
-    } else {
-        impulse = smooth_collision<D>(p_.v[i], p_.v[j], mass_[si], mass_[sj], n, alpha);
-    }
-    last_collision_[i] = now_;
-    last_collision_[j] = now_;
-    ++count_[i];
-    ++count_[j];
-    ++counters_.collisions;
-    ++pair_collisions_[std::min(si, sj) * ns_ + std::max(si, sj)];
-    if (sink_) {
-        rec.vi_after = p_.v[i];
-        rec.vj_after = p_.v[j];
-        if (rough_) {
-            rec.wi_after = p_.w[i];
-            rec.wj_after = p_.w[j];
-        }
-        rec.impulse = impulse;
-        sink_->on_collision(rec);
-    }
-    predict(i);
-    queue_.update(i, ev_time_[i]);
-    predict(j);
-    queue_.update(j, ev_time_[j]);
-}
-
-template <int D>
 void EventDrivenEngine<D>::cross_cell(std::uint32_t i, int code) {
     move(i);
     const int a = code / 2;
@@ -625,30 +564,12 @@ void EventDrivenEngine<D>::cross_cell(std::uint32_t i, int code) {
 }
 
 template <int D>
-void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
-    move(i);
+void EventDrivenEngine<D>::finish_wall_hit(std::uint32_t i, int code, double u, double t_abs,
+                                           double before) {
     const int a = code / 2;
-    const int side = code % 2;
-    const double inward = side ? -1.0 : 1.0;
+    const double inward = code % 2 ? -1.0 : 1.0;
     const WallSlot& w = walls_[std::size_t(code)];
     const double m = mass_[p_.species[i]];
-    const double t_abs = t_origin_ + now_;  // wall motions are functions of absolute time
-    const double u = wall_velocity(w.motion, side ? -1 : 1, t_abs);
-    const double before = p_.v[i][a];
-    // Only a particle still moving into the wall (relative to it) is reflected.
-    if (inward * (before - u) < 0.0) {
-        if (!w.rule) {
-            p_.v[i][a] = 2.0 * u - before;  // static elastic wall (u = 0)
-        } else if (settings_.tc_guard && now_ - last_collision_[i] < settings_.tc) {
-            // TC model at walls too: a hit within tc of the last collision is elastic.
-            WallParams elastic = w.params;
-            elastic.restitution = constant_impact_restitution(1.0);
-            w.rule(p_.v[i], a, inward, u, elastic, *w.rng, m);
-            ++counters_.tc_wall_hits;
-        } else {
-            w.rule(p_.v[i], a, inward, u, w.params, *w.rng, m);
-        }
-    }
     if (!w.simple) {
         // Resting contact under gravity (or a wall accelerating into the particle): a rebound
         // slower than acc * tc would come back within 2 tc, and at zero speed the same contact
@@ -673,15 +594,17 @@ void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
 }
 
 template <int D>
-void EventDrivenEngine<D>::set_wall(int axis, int side, WallRule rule, const WallParams& params,
-                                    Rng* rng, const WallMotion& motion) {
+void EventDrivenEngine<D>::set_wall(int axis, int side, const WallMotion& motion,
+                                    std::size_t partner, WallReflection<D>* reflection) {
     if (axis < 0 || axis >= D || box_.periodic[std::size_t(axis)]) {
         throw std::invalid_argument("set_wall: walls need a bounded (non-periodic) axis");
     }
+    if (!reflection && partner >= contacts_.walls.size()) {
+        throw std::invalid_argument("set_wall: no such wall partner");
+    }
     WallSlot& w = walls_[std::size_t(2 * axis + side)];
-    w.rule = rule;
-    w.params = params;
-    w.rng = rng;
+    w.reflection = reflection;
+    w.partner = partner;
     w.motion = motion;
     const double reach = motion.reach();
     w.base = side == 0 ? reach : box_.length[axis] - reach;
@@ -700,76 +623,6 @@ void EventDrivenEngine<D>::set_wall(int axis, int side, WallRule rule, const Wal
         synchronize();
         for (std::uint32_t i = 0; i < p_.size(); ++i) predict(i);
         queue_.rebuild([this](std::uint32_t k) { return ev_time_[k]; });
-    }
-}
-
-template <int D>
-typename EventDrivenEngine<D>::Stop EventDrivenEngine<D>::advance(
-    double t_limit, std::uint64_t collision_limit, const std::atomic<bool>* interrupt,
-    std::uint64_t event_limit) {
-    // Internal times are relative to t_origin_ (see rebase_time()).
-    double limit = t_limit - t_origin_;
-    if (p_.size() == 0) {
-        now_ = limit;
-        limit_now_ = t_limit;
-        return Stop::TimeLimit;
-    }
-    // The flag is read on entry (runs made of many short advances, e.g. frequent thermostat
-    // kicks, must stop too) and every 1024 events.
-    if (interrupt && interrupt->load(std::memory_order_relaxed)) return Stop::Interrupted;
-    std::uint32_t check = 0;
-    while (true) {
-        if (interrupt && (++check & 1023u) == 0 && interrupt->load(std::memory_order_relaxed)) {
-            return Stop::Interrupted;
-        }
-        if (counters_.events >= event_limit) return Stop::EventLimit;
-        if (events_since_sort_ >= sort_every_) {
-            // Between events the state is consistent: re-sort, then rebuild the queue.
-            rebase_time();
-            limit = t_limit - t_origin_;
-            sort_by_cell();
-            events_since_sort_ = 0;
-            queue_.reset(p_.size());
-            queue_.rebuild([this](std::uint32_t k) { return ev_time_[k]; });
-        }
-        const double te = queue_.top_time();
-        if (te > limit) {
-            now_ = limit;
-            limit_now_ = t_limit;  // now() reports the limit exactly
-            return Stop::TimeLimit;
-        }
-        if (te >= 1e299) return Stop::NoEvents;
-        const std::uint32_t i = queue_.top();
-        now_ = te;
-        limit_now_ = kNoLimit;
-        ++counters_.events;
-        ++events_since_sort_;
-        switch (ev_kind_[i]) {
-            case kCollision: {
-                const auto j = static_cast<std::uint32_t>(ev_partner_[i]);
-                if (count_[j] != ev_count_[i]) {
-                    ++counters_.stale_events;
-                    move(i);
-                    predict(i);
-                    queue_.update(i, ev_time_[i]);
-                    continue;
-                }
-                collide(i, j);
-                if (counters_.collisions >= collision_limit) return Stop::CollisionLimit;
-                break;
-            }
-            case kCell:
-                cross_cell(i, ev_partner_[i]);
-                break;
-            case kWall:
-                hit_wall(i, ev_partner_[i]);
-                break;
-            default:
-                move(i);
-                predict(i);
-                queue_.update(i, ev_time_[i]);
-                break;
-        }
     }
 }
 

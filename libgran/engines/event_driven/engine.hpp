@@ -19,15 +19,17 @@
 #include <cstdint>
 #include <vector>
 
-#include "libgran/core/wall_motion.hpp"
+#include <string>
+
 #include "libgran/core/box.hpp"
 #include "libgran/core/collision_record.hpp"
-#include "libgran/engines/event_driven/event_queue.hpp"
 #include "libgran/core/particles.hpp"
-#include "species/collision_rules.hpp"
-#include "species/impact_restitution.hpp"
-#include "species/species.hpp"
-#include "species/wall_rules.hpp"
+#include "libgran/core/species.hpp"
+#include "libgran/core/wall_motion.hpp"
+#include "libgran/engines/event_driven/collision_rules.hpp"
+#include "libgran/engines/event_driven/event_queue.hpp"
+#include "libgran/plugins/law.hpp"
+#include "libgran/plugins/wall.hpp"
 
 namespace gran {
 
@@ -72,19 +74,42 @@ inline double pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sig
 }
 
 template <int D>
+class EventDrivenEngine;
+
+// A hard-sphere law's event loop on this engine, registered by register_law<L> (law_loop.hpp)
+// under the law's name; the engine calls it through this pointer once per advance.
+template <int D>
+struct EventDrivenLawLoops {
+    std::string name;
+    int (EventDrivenEngine<D>::*advance)(double t_limit, std::uint64_t collision_limit,
+                                         const std::atomic<bool>* interrupt,
+                                         std::uint64_t event_limit) = nullptr;
+};
+
+template <int D>
 class EventDrivenEngine {
   public:
     enum class Stop { TimeLimit, CollisionLimit, Interrupted, NoEvents, EventLimit };
 
-    EventDrivenEngine(const Box<D>& box, const SpeciesTable& table, Particles<D> particles,
-                      EngineSettings settings);
+    // The contacts' law (a hard-sphere law, or the hard limit of a soft-contact law) selects the
+    // event loop. Every wall of a bounded axis starts static, with the contacts of the wall
+    // partner `box` (set_wall changes it). Throws std::invalid_argument if the law has no
+    // hard-sphere form, or the contacts need angular velocities that `particles` lacks.
+    EventDrivenEngine(const Box<D>& box, const SpeciesTable& table, const ContactTable& contacts,
+                      Particles<D> particles, EngineSettings settings);
 
     // Processes events up to time t_limit; stops early once the total collision count reaches
     // collision_limit, once the total event count reaches event_limit (the run's watchdog checks
     // progress between such chunks), or when *interrupt becomes true (checked every 1024 events).
     Stop advance(double t_limit, std::uint64_t collision_limit,
                  const std::atomic<bool>* interrupt = nullptr,
-                 std::uint64_t event_limit = UINT64_MAX);
+                 std::uint64_t event_limit = UINT64_MAX) {
+        return Stop((this->*loop_)(t_limit, collision_limit, interrupt, event_limit));
+    }
+    // The event loop of law L (law_loop.hpp), returning a Stop.
+    template <class L>
+    int advance_with(double t_limit, std::uint64_t collision_limit,
+                     const std::atomic<bool>* interrupt, std::uint64_t event_limit);
 
     double now() const { return limit_now_ == kNoLimit ? t_origin_ + now_ : limit_now_; }
     const Particles<D>& particles() const { return p_; }
@@ -112,15 +137,13 @@ class EventDrivenEngine {
 
     void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
 
-    // Particle-wall rule of one wall of a bounded axis (side 0: lower, 1: upper); the default is a
-    // static elastic wall. Wall drivers install theirs; `rng` must outlive the engine. u is the
-    // wall's velocity along the axis at the hit. A moving wall's surface is at
-    // base + motion.position(t) with base = motion.reach() for the lower wall and
-    // L - motion.reach() for the upper one: its whole excursion lies inside the box.
-    using WallRule = void (*)(Vec<D>& v, int axis, double inward, double u,
-                              const WallParams& params, Rng& rng, double mass);
-    void set_wall(int axis, int side, WallRule rule, const WallParams& params, Rng* rng,
-                  const WallMotion& motion = WallMotion::fixed());
+    // One wall of a bounded axis (side 0: lower, 1: upper): its motion and the contacts of wall
+    // partner `partner` (index into the contacts' walls), or `reflection`, a rule that replaces the
+    // contact (it must outlive the engine). A moving wall's surface is at base + motion.position(t)
+    // with base = motion.reach() for the lower wall and L - motion.reach() for the upper one: its
+    // whole excursion lies inside the box.
+    void set_wall(int axis, int side, const WallMotion& motion, std::size_t partner,
+                  WallReflection<D>* reflection = nullptr);
     // Surface position of a wall at time t (index 2 * axis + side).
     double wall_position(int code, double t) const {
         return walls_[std::size_t(code)].base + walls_[std::size_t(code)].motion.position(t);
@@ -128,9 +151,6 @@ class EventDrivenEngine {
     // Momentum given to each wall, sum of m |v_n' - v_n| over its hits (index 2 * axis + side).
     const std::array<double, 2 * D>& wall_impulse() const { return wall_impulse_; }
     const Vec<D>& gravity() const { return g_; }
-    bool wall_is_set(int axis, int side) const {
-        return walls_[std::size_t(2 * axis + side)].rule != nullptr;
-    }
     // Hits per wall (index 2 * axis + side).
     const std::array<std::uint64_t, 2 * D>& wall_hits() const { return wall_hit_count_; }
 
@@ -166,9 +186,14 @@ class EventDrivenEngine {
     std::vector<Vec<D>> image_offsets_;
     double axis_event(std::uint32_t i, int a, double best, std::uint8_t& kind, int& code) const;
     void schedule(std::uint32_t i, double collision, std::int32_t partner);
+    template <class L>
     void collide(std::uint32_t i, std::uint32_t j);
     void cross_cell(std::uint32_t i, int code);
+    template <class L>
     void hit_wall(std::uint32_t i, int code);
+    // After a wall hit's reflection: the resting-contact lift, the wall's impulse and hit count,
+    // and the next event of i.
+    void finish_wall_hit(std::uint32_t i, int code, double u, double t_abs, double before);
     void build_cells();
     void cell_insert(std::uint32_t i, std::int32_t c);
     void cell_remove(std::uint32_t i);
@@ -187,9 +212,10 @@ class EventDrivenEngine {
     // species tables, flattened
     std::size_t ns_ = 0;
     std::vector<double> mass_, diameter_, inertia_;
-    std::vector<double> sigma_pair_, alpha_pair_, beta_pair_;
-    std::vector<ImpactRestitution> restitution_pair_;
-    bool impact_dependent_ = false;  // some pair law depends on the impact speed
+    std::vector<double> sigma_pair_;
+    ContactTable contacts_;  // the law's parameters of every pair and wall contact
+    int (EventDrivenEngine::*loop_)(double, std::uint64_t, const std::atomic<bool>*,
+                                    std::uint64_t) = nullptr;
     bool rough_ = false;
     Vec<D> g_ = Vec<D>::Zero();
     bool gravity_ = false;
@@ -228,9 +254,8 @@ class EventDrivenEngine {
     CollisionSink<D>* sink_ = nullptr;
 
     struct WallSlot {
-        WallRule rule = nullptr;
-        WallParams params;
-        Rng* rng = nullptr;
+        WallReflection<D>* reflection = nullptr;  // null: a contact with the law
+        std::size_t partner = 0;                  // wall partner in contacts_
         WallMotion motion;
         double base = 0;     // surface position at zero displacement
         int layers = 1;      // cell layers (from this wall) whose particles can reach it

@@ -1,11 +1,12 @@
 #pragma once
-// What plugin factories may read about the scene they are built for.
+// What plugin factories may read about the scene they are built for. Engine-free: a plugin learns
+// what the engine offers (binary collision records or not), never which engine runs.
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "species/species.hpp"
+#include "libgran/core/species.hpp"
 
 namespace gran {
 
@@ -17,7 +18,14 @@ struct SceneInfo {
     std::vector<bool> periodic;
     double initial_temperature = 1;
     std::array<double, 3> gravity{0, 0, 0};
-    std::string engine = "event_driven";  // engine.type
+    // The contacts: whether grains carry angular velocities (some contact needs them), and the
+    // nominal normal restitution of each species pair (ns x ns, for kinetic-theory estimates such
+    // as the Enskog equation of state).
+    bool rotating = false;
+    std::vector<double> nominal_restitution;
+    // The engine produces binary collision records (instantaneous collisions); a soft-contact
+    // engine has contacts of finite duration instead.
+    bool binary_collisions = true;
     // Largest speed of a moving wall (V_p = A omega of a vibrating base), 0 if none; known to the
     // observables (the drivers are built first).
     double peak_velocity = 0;

@@ -1,7 +1,8 @@
 #pragma once
-// Binary collision rules of inelastic hard disks/spheres as plain functions on plain data.
+// Binary collision rules of inelastic hard disks/spheres as plain functions on plain data: the
+// event-driven engine applies them with the normal and tangential restitution a law gives.
 // n is the unit vector from particle 2 to particle 1 at contact; approaching means (v1 - v2).n < 0.
-#include "libgran/core/vec.hpp"
+#include "libgran/core/vec.hpp"  // cross_w, cross_n
 
 namespace gran {
 
@@ -16,26 +17,6 @@ inline double smooth_collision(Vec<D>& v1, Vec<D>& v2, double m1, double m2, con
     v1 += (impulse / m1) * n;
     v2 -= (impulse / m2) * n;
     return impulse;
-}
-
-// w x n for an angular velocity w: in 2D w is the z component, so w x n = w (-n_y, n_x).
-template <int D>
-inline Vec<D> cross_w(const AngVec<D>& w, const Vec<D>& n) {
-    if constexpr (D == 2) {
-        return Vec<D>(-w * n.y(), w * n.x());
-    } else {
-        return w.cross(n);
-    }
-}
-
-// n x p, as an angular quantity (a scalar z component in 2D).
-template <int D>
-inline AngVec<D> cross_n(const Vec<D>& n, const Vec<D>& p) {
-    if constexpr (D == 2) {
-        return n.x() * p.y() - n.y() * p.x();
-    } else {
-        return n.cross(p);
-    }
 }
 
 // Rough particles with normal restitution alpha and tangential restitution beta, Barrat & Trizac
@@ -66,6 +47,14 @@ inline double rough_collision(Vec<D>& v1, Vec<D>& v2, AngVec<D>& w1, AngVec<D>& 
     w1 -= (2.0 / (q1 * m1 * s1)) * torque;
     w2 -= (2.0 / (q2 * m2 * s2)) * torque;
     return impulse_n;
+}
+
+// A wall of infinite mass moving with velocity u along its normal (u = 0: a static wall; a
+// sawtooth wall reports u = inward v0, Barrat & Trizac 2002, Sec. III A; a piston its waveform's
+// velocity, McNamara & Falcon 2005, Sec. II B): the relative normal velocity is reversed and
+// scaled, v_n' - u = -e (v_n - u). Returns v_n'; exactly 2 u - v_n for e = 1 (the sawtooth rule).
+inline double wall_collision(double v_n, double u, double e) {
+    return (1.0 + e) * u - e * v_n;
 }
 
 // Closed-form kinetic energy change of a collision (translational + rotational), for tests and

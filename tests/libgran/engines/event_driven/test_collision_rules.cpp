@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "species/collision_rules.hpp"
+#include "libgran/engines/event_driven/collision_rules.hpp"
 
 namespace gran {
 namespace {

@@ -1,7 +1,8 @@
 #pragma once
 // What observables may read of a running simulation, whichever engine runs it: the event-driven
-// hard-particle engine or the time-stepped soft-sphere DEM engine (scene key engine.type). One
-// virtual call per quantity per sample; nothing here is on a hot path.
+// hard-particle engine or the time-stepped soft-sphere DEM engine (scene key engine.type); each
+// engine implements it next to its runner (libgran/run/*_runner.cpp). One virtual call per
+// quantity per sample; nothing here is on a hot path.
 //
 // Counts mean the same physical thing on both engines where they can: a "collision" of the
 // event-driven engine is a binary collision, of the DEM engine a particle-particle contact that
@@ -12,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "libgran/engines/dem/engine.hpp"
-#include "libgran/engines/event_driven/engine.hpp"
+#include "libgran/core/particles.hpp"
+#include "libgran/core/species.hpp"
 
 namespace gran {
 
@@ -64,50 +65,6 @@ class EngineView {
         for (int i = 0; i < k; ++i) x += wall_position(code, t + period * i / k) / k;
         return x;
     }
-};
-
-template <int D>
-class EventDrivenView final : public EngineView<D> {
-  public:
-    explicit EventDrivenView(const EventDrivenEngine<D>& e) : e_(e) {}
-    const char* engine_name() const override { return "event_driven"; }
-    const Particles<D>& particles() const override { return e_.particles(); }
-    std::uint32_t id(std::size_t k) const override { return e_.ids()[k]; }
-    double now() const override { return e_.now(); }
-    double species_inertia(std::uint32_t s) const override { return e_.species_inertia(s); }
-    const Vec<D>& gravity() const override { return e_.gravity(); }
-    std::uint64_t collisions() const override { return e_.counters().collisions; }
-    const std::vector<std::uint64_t>& pair_collisions() const override {
-        return e_.pair_collisions();
-    }
-    const std::array<std::uint64_t, 2 * D>& wall_hits() const override { return e_.wall_hits(); }
-    const std::array<double, 2 * D>& wall_impulse() const override { return e_.wall_impulse(); }
-    double wall_position(int code, double t) const override { return e_.wall_position(code, t); }
-    const EventDrivenEngine<D>& engine() const { return e_; }
-
-  private:
-    const EventDrivenEngine<D>& e_;
-};
-
-template <int D>
-class DemView final : public EngineView<D> {
-  public:
-    explicit DemView(const DemEngine<D>& e) : e_(e) {}
-    const char* engine_name() const override { return "dem"; }
-    const Particles<D>& particles() const override { return e_.particles(); }
-    std::uint32_t id(std::size_t k) const override { return std::uint32_t(k); }
-    double now() const override { return e_.now(); }
-    double species_inertia(std::uint32_t s) const override { return e_.species_inertia(s); }
-    const Vec<D>& gravity() const override { return e_.gravity(); }
-    std::uint64_t collisions() const override { return e_.counters().contacts; }
-    const std::vector<std::uint64_t>& pair_collisions() const override { return none_; }
-    const std::array<std::uint64_t, 2 * D>& wall_hits() const override { return e_.wall_hits(); }
-    const std::array<double, 2 * D>& wall_impulse() const override { return e_.wall_impulse(); }
-    double wall_position(int code, double t) const override { return e_.wall_position(code, t); }
-
-  private:
-    const DemEngine<D>& e_;
-    std::vector<std::uint64_t> none_;
 };
 
 }  // namespace gran

@@ -1,0 +1,201 @@
+#pragma once
+// The event loop of the event-driven engine templated on the hard-sphere law
+// (libgran/plugins/law.hpp): the loop itself, binary collisions and wall hits, the parts that read
+// the law. Included by libgran/engines/register_law.hpp, so each law's file instantiates them with
+// its own law type (its restitution inlined, no call per collision); the engine reaches the loop
+// through EventDrivenLawLoops, once per advance.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "libgran/core/registry.hpp"
+#include "libgran/engines/event_driven/engine.hpp"
+
+namespace gran {
+
+template <int D>
+template <class L>
+int EventDrivenEngine<D>::advance_with(double t_limit, std::uint64_t collision_limit,
+                                       const std::atomic<bool>* interrupt,
+                                       std::uint64_t event_limit) {
+    // Internal times are relative to t_origin_ (see rebase_time()).
+    double limit = t_limit - t_origin_;
+    if (p_.size() == 0) {
+        now_ = limit;
+        limit_now_ = t_limit;
+        return int(Stop::TimeLimit);
+    }
+    // The flag is read on entry (runs made of many short advances, e.g. frequent thermostat
+    // kicks, must stop too) and every 1024 events.
+    if (interrupt && interrupt->load(std::memory_order_relaxed)) return int(Stop::Interrupted);
+    std::uint32_t check = 0;
+    while (true) {
+        if (interrupt && (++check & 1023u) == 0 && interrupt->load(std::memory_order_relaxed)) {
+            return int(Stop::Interrupted);
+        }
+        if (counters_.events >= event_limit) return int(Stop::EventLimit);
+        if (events_since_sort_ >= sort_every_) {
+            // Between events the state is consistent: re-sort, then rebuild the queue.
+            rebase_time();
+            limit = t_limit - t_origin_;
+            sort_by_cell();
+            events_since_sort_ = 0;
+            queue_.reset(p_.size());
+            queue_.rebuild([this](std::uint32_t k) { return ev_time_[k]; });
+        }
+        const double te = queue_.top_time();
+        if (te > limit) {
+            now_ = limit;
+            limit_now_ = t_limit;  // now() reports the limit exactly
+            return int(Stop::TimeLimit);
+        }
+        if (te >= 1e299) return int(Stop::NoEvents);
+        const std::uint32_t i = queue_.top();
+        now_ = te;
+        limit_now_ = kNoLimit;
+        ++counters_.events;
+        ++events_since_sort_;
+        switch (ev_kind_[i]) {
+            case kCollision: {
+                const auto j = static_cast<std::uint32_t>(ev_partner_[i]);
+                if (count_[j] != ev_count_[i]) {
+                    ++counters_.stale_events;
+                    move(i);
+                    predict(i);
+                    queue_.update(i, ev_time_[i]);
+                    continue;
+                }
+                collide<L>(i, j);
+                if (counters_.collisions >= collision_limit) return int(Stop::CollisionLimit);
+                break;
+            }
+            case kCell:
+                cross_cell(i, ev_partner_[i]);
+                break;
+            case kWall:
+                hit_wall<L>(i, ev_partner_[i]);
+                break;
+            default:
+                move(i);
+                predict(i);
+                queue_.update(i, ev_time_[i]);
+                break;
+        }
+    }
+}
+
+template <int D>
+template <class L>
+void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
+    move(i);
+    move(j);
+    const std::uint32_t si = p_.species[i], sj = p_.species[j];
+    const std::size_t pij = si * ns_ + sj;
+    const Vec<D> dr = box_.separation(p_.r[i], p_.r[j]);
+    const double dist = dr.norm();
+    const Vec<D> n = dr / dist;
+    if (dist < sigma_pair_[pij] * (1.0 - 1e-10)) ++counters_.overlap_collisions;
+    const typename L::Pair& law = contacts_.template contacts<L>()[pij];
+    double alpha;
+    if constexpr (L::impact_dependent) {
+        // r(v) laws take the normal relative speed at impact (McNamara & Falcon 2005, Eq. 1).
+        alpha = L::normal_restitution(law, (p_.v[i] - p_.v[j]).dot(n));
+    } else {
+        alpha = L::normal_restitution(law, 0.0);
+    }
+    double beta = L::tangential_restitution(law);
+    if (settings_.tc_guard &&
+        (now_ - last_collision_[i] < settings_.tc || now_ - last_collision_[j] < settings_.tc)) {
+        alpha = 1.0;
+        beta = -1.0;
+        ++counters_.tc_collisions;
+    }
+    CollisionRecord<D> rec;
+    if (sink_) {
+        rec.time = t_origin_ + now_;
+        rec.i = id_[i];
+        rec.j = id_[j];
+        rec.si = si;
+        rec.sj = sj;
+        rec.n = n;
+        rec.ri = p_.r[i];
+        rec.vi = p_.v[i];
+        rec.vj = p_.v[j];
+        if (rough_) {
+            rec.wi = p_.w[i];
+            rec.wj = p_.w[j];
+        }
+        rec.alpha = alpha;
+        rec.beta = beta;
+        rec.contact_distance = sigma_pair_[pij];
+    }
+    double impulse;
+    if (rough_) {
+        impulse = rough_collision<D>(p_.v[i], p_.v[j], p_.w[i], p_.w[j], mass_[si], mass_[sj],
+                                     diameter_[si], diameter_[sj], inertia_[si], inertia_[sj], n,
+                                     alpha, beta);
+    } else {
+        impulse = smooth_collision<D>(p_.v[i], p_.v[j], mass_[si], mass_[sj], n, alpha);
+    }
+    last_collision_[i] = now_;
+    last_collision_[j] = now_;
+    ++count_[i];
+    ++count_[j];
+    ++counters_.collisions;
+    ++pair_collisions_[std::min(si, sj) * ns_ + std::max(si, sj)];
+    if (sink_) {
+        rec.vi_after = p_.v[i];
+        rec.vj_after = p_.v[j];
+        if (rough_) {
+            rec.wi_after = p_.w[i];
+            rec.wj_after = p_.w[j];
+        }
+        rec.impulse = impulse;
+        sink_->on_collision(rec);
+    }
+    predict(i);
+    queue_.update(i, ev_time_[i]);
+    predict(j);
+    queue_.update(j, ev_time_[j]);
+}
+
+// A wall hit: a rule replacing the contact (a thermal wall), or the contact law against the wall
+// partner, v_n' - u = -e (v_n - u) (wall_collision) with e of the impact speed |v_n - u|.
+template <int D>
+template <class L>
+void EventDrivenEngine<D>::hit_wall(std::uint32_t i, int code) {
+    move(i);
+    const int a = code / 2;
+    const int side = code % 2;
+    const double inward = side ? -1.0 : 1.0;
+    const WallSlot& w = walls_[std::size_t(code)];
+    const double t_abs = t_origin_ + now_;  // wall motions are functions of absolute time
+    const double u = wall_velocity(w.motion, side ? -1 : 1, t_abs);
+    const double before = p_.v[i][a];
+    // Only a particle still moving into the wall (relative to it) is reflected.
+    if (inward * (before - u) < 0.0) {
+        // TC model at walls too: a hit within tc of the last collision is elastic.
+        const bool guarded = settings_.tc_guard && now_ - last_collision_[i] < settings_.tc;
+        if (guarded) ++counters_.tc_wall_hits;
+        if (w.reflection) {
+            w.reflection->reflect(p_.v[i], a, inward, u, mass_[p_.species[i]]);
+        } else {
+            const typename L::Pair& law =
+                contacts_.template contacts<L>()[contacts_.wall_index(w.partner, p_.species[i])];
+            const double e = guarded ? 1.0 : L::normal_restitution(law, before - u);
+            p_.v[i][a] = wall_collision(before, u, e);
+        }
+    }
+    finish_wall_hit(i, code, u, t_abs, before);
+}
+
+// Registers the event loops of law L for disks and spheres (called by register_law<L>).
+template <class L>
+void register_event_driven_loops(const std::string& name) {
+    Registry<EventDrivenLawLoops<2>>::instance().add(
+        {name, &EventDrivenEngine<2>::template advance_with<L>});
+    Registry<EventDrivenLawLoops<3>>::instance().add(
+        {name, &EventDrivenEngine<3>::template advance_with<L>});
+}
+
+}  // namespace gran

@@ -1,0 +1,105 @@
+#include "libgran/scene/plugin_check.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+
+#include "libgran/plugins/engine.hpp"
+#include "libgran/scene/interactions.hpp"
+
+namespace gran {
+
+namespace {
+
+// What every plugin reads: the scene without the drivers' and contacts' contributions yet.
+SceneInfo base_info(const Scene& sc) {
+    SceneInfo info;
+    info.dimension = sc.dimension;
+    info.seed = sc.seed;
+    info.species = &sc.species;
+    info.box_length = sc.box_length;
+    info.periodic = sc.periodic;
+    info.initial_temperature = sc.temperature;
+    info.gravity = sc.gravity;
+    info.binary_collisions = sc.engine->binary_collisions;
+    return info;
+}
+
+// The drivers: built once; their walls (each side of an axis given by one driver at most) and
+// kicks become the engine's demands, their wall partners the names of grain-wall contacts.
+template <int D>
+void check_drivers(Scene& sc, EngineDemands& demands, std::vector<std::string>& partners) {
+    std::array<const PluginEntry*, 2 * D> owner{};
+    for (std::size_t k = 0; k < sc.drivers.size(); ++k) {
+        const PluginEntry& e = sc.drivers[k];
+        auto driver = DriverRegistry::instance().find(e.type)->template make<D>(
+            e.params, plugin_info(sc, k));
+        for (const WallSpec<D>& w : driver->walls()) {
+            const auto*& slot = owner[std::size_t(2 * w.axis + w.side)];
+            if (slot) {
+                e.params.fail("type", fmt::format("the {} wall of axis {} is already given by "
+                                                  "driver '{}'",
+                                                  w.side == 0 ? "lower" : "upper", w.axis,
+                                                  slot->name));
+            }
+            slot = &e;
+            demands.walls.push_back(
+                {k, w.partner, w.axis, w.side, w.motion, w.motion_key, w.reflection != nullptr});
+            if (!w.reflection && std::find(partners.begin(), partners.end(), w.partner) ==
+                                     partners.end()) {
+                if (w.partner == "box") {
+                    e.params.fail("name", "`box` names the walls no driver claims: give this "
+                                          "driver another `name`");
+                }
+                partners.push_back(w.partner);
+            }
+        }
+        if (driver->next_kick() < kInf) demands.kick_drivers.push_back(k);
+        if (driver->peak_velocity() > sc.info.peak_velocity) {
+            sc.info.peak_velocity = driver->peak_velocity();
+            sc.info.drive_period = driver->drive_period();
+        }
+    }
+    // The walls of bounded axes that no driver claims (static walls at 0 and L).
+    for (int a = 0; a < D; ++a) {
+        if (!sc.periodic[std::size_t(a)]) {
+            partners.push_back("box");
+            break;
+        }
+    }
+}
+
+template <int D>
+void check_observables(const Scene& sc, EngineDemands& demands) {
+    for (std::size_t k = 0; k < sc.observables.size(); ++k) {
+        const PluginEntry& e = sc.observables[k];
+        auto observable = ObservableRegistry::instance().find(e.type)->template make<D>(
+            e.params, plugin_info(sc, k));
+        if (observable->collision_sink()) demands.collision_observables.push_back(k);
+    }
+}
+
+}  // namespace
+
+template <int D>
+void check_plugins(Scene& sc, const YAML::Node& root, const Where& top, YAML::Node& res) {
+    sc.info = base_info(sc);
+    EngineDemands demands;
+    std::vector<std::string> partners;
+    check_drivers<D>(sc, demands, partners);
+    const LawContext context{D, sc.temperature, sc.species.min_mass()};
+    YAML::Node ri;
+    sc.contacts = read_interactions(child(root, "interactions"), sc.species, partners, context,
+                                    top, ri);
+    res["interactions"] = ri;
+    sc.info.rotating = sc.contacts.rotating;
+    sc.info.nominal_restitution = sc.contacts.nominal_restitution;
+    check_observables<D>(sc, demands);
+    sc.engine->check(sc, demands);
+}
+
+template void check_plugins<2>(Scene&, const YAML::Node&, const Where&, YAML::Node&);
+template void check_plugins<3>(Scene&, const YAML::Node&, const Where&, YAML::Node&);
+
+}  // namespace gran

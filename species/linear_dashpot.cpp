@@ -1,0 +1,59 @@
+// The soft contact of Bhateja, Sharma & Singh, Phys. Fluids 28, 043301 (2016), Appendix: a linear
+// spring-dashpot normal force with the dashpot set from the restitution (Eqs. A5, A6, A9 with A9's
+// sign corrected) and a tangential dashpot capped by Coulomb friction, no tangential spring (Eqs.
+// A7, A8; "k_t = 0"). Kernel: linear_dashpot_force (species/contact_laws.hpp). Frictionless, it
+// also runs on the event-driven engine as its hard limit (instantaneous collisions with the same
+// restitution), the limit k_n -> infinity of the DEM runs.
+#include "libgran/engines/register_law.hpp"
+#include "species/soft_contact.hpp"
+
+namespace gran {
+namespace {
+
+struct LinearDashpot {
+    struct Pair {
+        LinearDashpotContact contact;  // k_n, gamma_n, gamma_t, mu
+        double duration = 0;           // head-on contact duration t_c
+        double restitution = 1;        // requested e
+    };
+    static constexpr bool history = false;
+    static constexpr bool impact_dependent = false;
+
+    static Pair resolve(const Params& p, const ContactPartner& a, const ContactPartner& b,
+                        const LawContext&) {
+        const soft_contact::Request r = soft_contact::read(p, a, b);
+        const soft_contact::LinearNormal n = soft_contact::linear_normal(r, p);
+        Pair c;
+        c.contact = {n.k_n, n.gamma_n, soft_contact::tangential_damping(r, n.gamma_n), r.mu};
+        c.duration = n.duration;
+        c.restitution = r.e;
+        return c;
+    }
+    template <int D>
+    static ContactForce<D> force(const Pair& c, double delta, const Vec<D>& n, const Vec<D>& g,
+                                 double l_i, double l_j, Vec<D>& /*spring*/) {
+        return linear_dashpot_force<D>(c.contact, delta, n, g, l_i, l_j);
+    }
+    static double elastic_energy(const Pair& c, double delta, double /*spring2*/) {
+        return 0.5 * c.contact.k_n * delta * delta;
+    }
+    static double duration(const Pair& c) { return c.duration; }
+    static double restitution(const Pair& c) { return c.restitution; }
+    static double nominal_restitution(const Pair& c) { return c.restitution; }
+    static bool rotates(const Pair& c) { return c.contact.mu > 0; }
+    // Hard limit (event-driven engine).
+    static double normal_restitution(const Pair& c, double) { return c.restitution; }
+    static double tangential_restitution(const Pair&) { return -1.0; }
+    static const char* hard_sphere_problem(const Pair& c) {
+        return soft_contact::hard_limit_problem(c.contact.mu);
+    }
+};
+
+const bool registered = register_law<LinearDashpot>(
+    "linear_dashpot",
+    "soft contact: linear spring-dashpot with the dashpot from e, Coulomb-capped tangential "
+    "dashpot, no tangential spring (Bhateja et al. 2016, Eqs. A5-A9)",
+    soft_contact::common_schema());
+
+}  // namespace
+}  // namespace gran

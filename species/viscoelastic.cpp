@@ -1,0 +1,43 @@
+// Restitution of viscoelastic spheres as a function of the impact speed v, to order v^(2/5):
+// e(v) = 1 - C1 x + C2 x^2, x = gamma v^(1/5) (Schwager & Poeschel, Phys. Rev. E 57, 650 (1998);
+// Ramirez et al., Phys. Rev. E 60, 4465 (1999)); valid for e >~ 0.8. Kernel and range of validity:
+// species/impact_restitution.hpp.
+#include "libgran/engines/register_law.hpp"
+#include "species/impact_restitution.hpp"
+
+namespace gran {
+namespace {
+
+struct Viscoelastic {
+    struct Pair {
+        double gamma = 0;  // A kappa^(2/5), (time/length)^(1/5)
+        double beta = -1;  // tangential restitution of grain-grain collisions
+    };
+    static constexpr bool impact_dependent = true;
+
+    static Pair resolve(const Params& p, const ContactPartner&, const ContactPartner& b,
+                        const LawContext&) {
+        return {p.real("gamma"), b.wall ? -1.0 : p.real("beta")};
+    }
+    static double normal_restitution(const Pair& c, double impact_speed) {
+        return viscoelastic_restitution(std::fabs(impact_speed), c.gamma);
+    }
+    static double tangential_restitution(const Pair& c) { return c.beta; }
+    static double nominal_restitution(const Pair&) { return 1.0; }  // the v -> 0 limit
+    static bool rotates(const Pair& c) { return c.beta != -1.0; }
+};
+
+const bool registered = register_law<Viscoelastic>(
+    "viscoelastic",
+    "hard-particle collision with the viscoelastic restitution e(v) = 1 - C1 x + C2 x^2, x = gamma "
+    "v^(1/5) (Schwager & Poeschel 1998; valid for e >~ 0.8)",
+    {real("gamma", "", "(time/length)^(1/5)",
+          "gamma = A kappa^(2/5) of the viscoelastic series e = 1 - C1 gamma v^(1/5) + C2 "
+          "gamma^2 v^(2/5)",
+          0, 1e308),
+     real("beta", "-1", "",
+          "tangential restitution coefficient beta_ij of grain-grain collisions (-1 = smooth)", -1,
+          1)});
+
+}  // namespace
+}  // namespace gran
