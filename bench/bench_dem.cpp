@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
     for (std::size_t n : opt.sizes) {
         const double width = bed_width(n);
         const SpeciesTable table = bed_species(n);
-        const DemContactTable contacts = bed_contacts(table);
+        const ContactTable contacts = bed_contacts(table);
         DemEngine<3> e = vibrated_bed(table, contacts, n, opt.W);
         e.advance(opt.warmup_periods * period);
 

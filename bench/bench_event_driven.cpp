@@ -28,6 +28,7 @@
 
 #include "bench/bench_clock.hpp"
 #include "libgran/engines/event_driven/engine.hpp"
+#include "libgran/scene/interactions.hpp"
 #include "libgran/scene/placement.hpp"
 
 namespace {
@@ -79,11 +80,14 @@ SpeciesTable monodisperse(std::size_t n) {
     s.diameter = 1;
     s.count = n;
     t.species.push_back(s);
-    PairCoefficients c;
-    c.alpha = 1;
-    c.beta = -1;
-    t.pairs.assign(1, c);
     return t;
+}
+
+// Elastic smooth contacts (constant_restitution, alpha = 1, beta = -1).
+ContactTable elastic(const SpeciesTable& t, int dimension) {
+    YAML::Node resolved;
+    return read_interactions(YAML::Load("{}"), t, {"box"}, {dimension, 1.0, t.min_mass()},
+                             {"bench", ""}, resolved);
 }
 
 template <int D>
@@ -139,7 +143,7 @@ Result run_case(const Case& c, const Options& opt) {
     const double e0 = kinetic_energy<D>(p);
     const Vec<D> p0 = total_momentum<D>(p);
     const std::vector<Vec<D>> v0 = p.v;
-    EventDrivenEngine<D> engine(box, table, std::move(p), EngineSettings{});
+    EventDrivenEngine<D> engine(box, table, elastic(table, D), std::move(p), EngineSettings{});
     res.setup_s = wall_seconds() - t_setup;
 
     // Equilibration: equil_per_particle collisions per particle = equil_per_particle * N / 2.

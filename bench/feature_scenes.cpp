@@ -65,7 +65,8 @@ YAML::Node bare_scene(const std::string& engine, const Geometry& g, const RunLen
         // Contacts last t_c = 0.01, 1/60 (phi = 0.1) to 1/10 (phi = 0.3) of the mean free time
         // of spheres at T = 1; dt = t_c / 50.
         s["engine"]["type"] = "dem";
-        s["engine"]["contact_time"] = 0.01;
+        s["interactions"]["law"] = "linear_dashpot";
+        s["interactions"]["contact_time"] = 0.01;
         s["run"]["unit"] = "time";
         s["run"]["equilibration"] = 0.0;
         s["run"]["measurement"] = run.dem_measurement;
@@ -183,11 +184,11 @@ std::vector<Feature> features(const Calibration& cal) {
     f.push_back({"dem_bare", "DEM bare gas (elastic, frictionless, periodic)", "", dem, {}});
     f.push_back({"dem_friction", "DEM friction (cundall_strack, mu = 0.5, e = 0.9) vs e = 0.9",
                  "dem_inelastic", dem, [](YAML::Node& s, const Geometry&) {
-                     s["engine"]["contact_law"] = "cundall_strack";
-                     s["engine"]["friction"] = 0.5;
+                     s["interactions"]["law"] = "cundall_strack";
+                     s["interactions"]["friction"] = 0.5;
                  }});
     f.push_back({"dem_inelastic", "DEM inelastic (e = 0.9)", "dem_bare", dem,
-                 [](YAML::Node& s, const Geometry&) { s["interactions"]["alpha"] = 0.9; }});
+                 [](YAML::Node& s, const Geometry&) { s["interactions"]["restitution"] = 0.9; }});
     f.push_back({"dem_walls", "DEM static walls on the last axis", "dem_bare", dem, add_walls});
     f.push_back(
         {"dem_gravity", "DEM gravity (scale height L/2) vs walls", "dem_walls", dem, add_gravity});

@@ -7,7 +7,10 @@
 #include <cmath>
 #include <numbers>
 
+#include <yaml-cpp/yaml.h>
+
 #include "libgran/engines/dem/engine.hpp"
+#include "libgran/scene/interactions.hpp"
 #include "libgran/scene/placement.hpp"
 
 namespace gran::bench {
@@ -25,21 +28,20 @@ inline SpeciesTable bed_species(std::size_t n) {
     s.count = n;
     s.inertia_factor = 0.4;
     table.species.push_back(s);
-    table.pairs.assign(1, PairCoefficients{});
     return table;
 }
 
-inline DemContactTable bed_contacts(const SpeciesTable& table) {
-    DemContactSpec spec;
-    spec.k_n = 2e5;  // m g / d
-    spec.e = 0.9;
-    spec.mu = 0.4;
-    spec.gamma_t = 20;
-    return DemContactTable(table, DemLaw::linear_dashpot, spec);
+// k_n = 2e5 m g / d, e = 0.9, mu = 0.4, c_t = 20 for grains and floor (the wall partner `box`).
+inline ContactTable bed_contacts(const SpeciesTable& table) {
+    YAML::Node resolved;
+    return read_interactions(
+        YAML::Load("{law: linear_dashpot, stiffness: 2.0e+5, restitution: 0.9, friction: 0.4, "
+                   "tangential_damping: 20}"),
+        table, {"box"}, {3, 1.0, table.min_mass()}, {"bench", ""}, resolved);
 }
 
 // The engine for the bed: keep `table` and `contacts` alive as long as it.
-inline DemEngine<3> vibrated_bed(const SpeciesTable& table, const DemContactTable& contacts,
+inline DemEngine<3> vibrated_bed(const SpeciesTable& table, const ContactTable& contacts,
                                  std::size_t n, double W) {
     const double width = bed_width(n);
     Box<3> box;
@@ -49,7 +51,7 @@ inline DemEngine<3> vibrated_bed(const SpeciesTable& table, const DemContactTabl
     settings.gravity = {0, 0, -1};
     DemEngine<3> e(box, table, contacts, vibrated_bed_lattice(n, width, 3.0, 1), settings);
     e.remove_wall(2, 1);
-    if (W > 0) e.set_wall(2, 0, WallMotion::sinusoid(1.0, std::sqrt(W)));
+    if (W > 0) e.set_wall(2, 0, WallMotion::sinusoid(1.0, std::sqrt(W)), 0);
     return e;
 }
 

@@ -21,6 +21,7 @@
 #include <string>
 
 #include "bench/vibrated_bed.hpp"
+#include "species/contact_laws.hpp"
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/scene/placement.hpp"
 
@@ -85,17 +86,19 @@ int main(int argc, char** argv) {
     const double period = gran::bench::kBedPeriod;
     const double width = gran::bench::bed_width(n);
     const SpeciesTable table = gran::bench::bed_species(n);
-    const DemContactTable contacts = gran::bench::bed_contacts(table);
+    const ContactTable contacts = gran::bench::bed_contacts(table);
     DemEngine<3> e = gran::bench::vibrated_bed(table, contacts, n, W);
     e.advance(warmup_periods * period);
     const std::uint64_t warm_steps = e.counters().steps;
     const std::uint64_t warm_rebuilds = e.counters().rebuilds;
 
-    const auto& pair = e.contact_table().pair(0, 0);
-    const auto& wall = e.contact_table().wall(0);
+    // The dashpots of Eq. A9 for the grain pair (m_eff = 1/2) and the floor (m_eff = 1).
+    const double t_c = contacts.law->soft_contact->duration(*contacts.table, 0);
+    const double c_n = gran::linear_damping_from_restitution(2e5, 0.5, 0.9);
+    const double c_n_wall = gran::linear_damping_from_restitution(2e5, 1.0, 0.9);
     std::printf(
         "gran: N %zu width %.6g dt %.15g t_c %.15g c_n %.15g (wall %.15g) c_t %.6g (wall %.6g)\n",
-        n, width, e.dt(), pair.duration, pair.gamma_n, wall.gamma_n, pair.gamma_t, wall.gamma_t);
+        n, width, e.dt(), t_c, c_n, c_n_wall, 20.0, 20.0);
     Observables o = measure(e);
     std::printf(
         "gran: after a warm-up of %llu steps: contacts/N %.4f T_z %.4f <z> %.4f (rebuilds/step "

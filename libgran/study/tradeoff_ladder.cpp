@@ -131,34 +131,34 @@ std::vector<Knob> automatic_knobs(const TradeoffRequest& rq, std::vector<std::st
                 "engine.dt_fraction", real_at(eng, "dt_fraction", 0.02), {4, 2, 1, 0.5}, 0.2));
         }
     }
+    const YAML::Node contacts = r["interactions"];
     if (wanted("stiffness")) {
         if (!dem) {
             skipped.push_back("stiffness: hard spheres are infinitely stiff");
-        } else if (real_at(eng, "stiffness") > 0) {
+        } else if (real_at(contacts, "stiffness") > 0) {
             out.push_back(scaled_knob("stiffness",
                                       "normal spring stiffness k_n: stiffer is harder spheres, "
                                       "shorter contacts, smaller steps",
-                                      "engine.stiffness", real_at(eng, "stiffness"),
+                                      "interactions.stiffness", real_at(contacts, "stiffness"),
                                       {0.01, 0.1, 1, 10}));
         } else {
             out.push_back(scaled_knob("stiffness", "contact time t_c (shorter is stiffer)",
-                                      "engine.contact_time", real_at(eng, "contact_time"),
+                                      "interactions.contact_time",
+                                      real_at(contacts, "contact_time"),
                                       {10, std::sqrt(10.0), 1, 1 / std::sqrt(10.0)}));
         }
     }
     if (wanted("engine")) {
-        const double mu = real_at(eng, "friction");
-        const double mu_w = real_at(eng, "wall_friction", mu);
         if (!dem) {
             skipped.push_back("engine: the scene is event-driven already (the hard limit)");
-        } else if (mu != 0 || mu_w != 0) {
+        } else if (sc.contacts.rotating) {
             skipped.push_back(
                 "engine: friction makes the soft-sphere model differ from the event-driven "
                 "one (rough hard spheres have a tangential restitution instead)");
         } else {
             Knob k{"engine",
                    "event-driven hard spheres: the k_n -> infinity, dt -> 0 limit",
-                   {{"dem", {}}, {"event_driven", {{"engine.type", "event_driven"}}}},
+                   {{"dem", {}}, {"event_driven", {{"engine", "{type: event_driven}"}}}},
                    0};
             out.push_back(k);
         }
@@ -315,11 +315,12 @@ std::string tradeoff_study_text(const TradeoffRequest& rq, const std::string& ou
     }
     // On the event-driven engine the DEM knobs mean nothing: the reference is the hard limit.
     const bool hard_limit = std::any_of(reference.begin(), reference.end(), [](const auto& kv) {
-        return kv.first == "engine.type" && kv.second == "event_driven";
+        return kv.first == "engine" && kv.second.find("event_driven") != std::string::npos;
     });
     if (hard_limit) {
         std::erase_if(reference, [](const auto& kv) {
-            return kv.first.rfind("engine.", 0) == 0 && kv.first != "engine.type";
+            return kv.first.rfind("engine.", 0) == 0 || kv.first == "interactions.stiffness" ||
+                   kv.first == "interactions.contact_time";
         });
         std::erase_if(reference_label, [](const std::string& l) {
             return l.rfind("dt_over_tc=", 0) == 0 || l.rfind("stiffness=", 0) == 0;

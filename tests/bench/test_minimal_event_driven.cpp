@@ -25,10 +25,6 @@ void check_kernel(double phi, std::size_t n) {
     s.name = "a";
     s.count = n;
     table.species.push_back(s);
-    PairCoefficients c;
-    c.alpha = 1;
-    c.beta = -1;
-    table.pairs.assign(1, c);
     Box<D> box;
     const double vd = theory::unit_ball_volume(D);
     box.length = Vec<D>::Constant(std::pow(double(n) * vd / phi, 1.0 / D));

@@ -8,42 +8,47 @@
 #include <vector>
 
 #include "libgran/core/wall_motion.hpp"
-#include "species/wall_rules.hpp"
+#include "libgran/engines/event_driven/collision_rules.hpp"
+#include "libgran/plugins/driver.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {
 namespace {
 
+// The sawtooth wall's rule is the wall collision with the wall moving into the gas at v0
+// (wall_velocity of the sawtooth motion) and e = 1.
 TEST(SawtoothWall, LowerWallRuleIsTwiceWallSpeedMinusNormalVelocity) {
-    Rng rng = make_rng(1, Stream::Driver);
-    const WallParams w;
     const double u = wall_velocity(WallMotion::sawtooth(0.7), +1, 12.3);
     for (double vy : {-0.1, -1.0, -3.5}) {
-        Vec<2> v(0.3, vy);
-        impact_wall_rule<2>(v, 1, +1.0, u, w, rng, 1.0);
-        EXPECT_EQ(v[1], 2 * 0.7 - vy);  // exactly, as the paper's rule
-        EXPECT_EQ(v[0], 0.3);           // tangential untouched
+        EXPECT_EQ(wall_collision(vy, u, 1.0), 2 * 0.7 - vy);  // exactly, as the paper's rule
     }
 }
 
 TEST(SawtoothWall, UpperWallRuleMirrorsTheLowerOne) {
-    Rng rng = make_rng(1, Stream::Driver);
-    const WallParams w;
     const double u = wall_velocity(WallMotion::sawtooth(0.7), -1, 0.0);
-    Vec<3> v(0.3, 1.2, -0.4);
-    impact_wall_rule<3>(v, 1, -1.0, u, w, rng, 1.0);
-    EXPECT_EQ(v[1], -2 * 0.7 - 1.2);
-    EXPECT_EQ(v[0], 0.3);
-    EXPECT_EQ(v[2], -0.4);
+    EXPECT_EQ(wall_collision(1.2, u, 1.0), -2 * 0.7 - 1.2);
 }
 
 TEST(SawtoothWall, WallRestitutionScalesTheRelativeVelocity) {
-    Rng rng = make_rng(1, Stream::Driver);
-    WallParams w;
-    w.restitution = constant_impact_restitution(0.8);
-    Vec<2> v(0.0, -2.0);
-    impact_wall_rule<2>(v, 1, +1.0, 0.5, w, rng, 1.0);
-    EXPECT_NEAR(v[1] - 0.5, -0.8 * (-2.0 - 0.5), 1e-15);
+    EXPECT_NEAR(wall_collision(-2.0, 0.5, 0.8) - 0.5, -0.8 * (-2.0 - 0.5), 1e-15);
+}
+
+// A thermal wall driver (axis y of a box periodic along the other axes) and its rule.
+template <int D>
+std::unique_ptr<Driver<D>> thermal_wall(double temperature, const char* tangential,
+                                        std::uint64_t seed) {
+    const auto* plugin = DriverRegistry::instance().find("thermal_wall");
+    const YAML::Node node = YAML::Load(fmt::format(
+        "{{type: thermal_wall, axis: y, temperature: {}, tangential: {}}}", temperature,
+        tangential));
+    SceneInfo info;
+    info.dimension = D;
+    info.seed = seed;
+    info.periodic.assign(D, true);
+    info.periodic[1] = false;
+    info.box_length.assign(D, 10.0);
+    return plugin->template make<D>(read_params(node, plugin->schema, {"test", ""}, {"type"}),
+                                    info);
 }
 
 // Kolmogorov–Smirnov test of the outgoing normal speeds against the flux distribution
@@ -62,14 +67,14 @@ double ks_flux(const std::vector<double>& speeds, double T0, double m) {
 }
 
 TEST(ThermalWall, OutgoingNormalVelocitiesFollowTheFluxDistribution) {
-    Rng rng = make_rng(3, Stream::Driver);
-    WallParams w;
-    w.temperature = 2.0;
+    auto driver = thermal_wall<2>(2.0, "keep", 3);
+    WallReflection<2>* rule = driver->walls().at(0).reflection;
+    ASSERT_NE(rule, nullptr);  // the rule replaces the contact
     const double m = 3.0;
     std::vector<double> out;
     for (int k = 0; k < 200000; ++k) {
         Vec<2> v(0.4, -1.0);
-        thermal_wall_rule<2>(v, 1, +1.0, 0.0, w, rng, m);
+        rule->reflect(v, 1, +1.0, 0.0, m);
         ASSERT_GT(v[1], 0.0);
         EXPECT_EQ(v[0], 0.4);  // tangential kept
         out.push_back(v[1]);
@@ -80,15 +85,13 @@ TEST(ThermalWall, OutgoingNormalVelocitiesFollowTheFluxDistribution) {
 }
 
 TEST(ThermalWall, UpperWallSendsParticlesDownAndCanRedrawTangentialVelocity) {
-    Rng rng = make_rng(4, Stream::Driver);
-    WallParams w;
-    w.temperature = 1.0;
-    w.redraw_tangential = true;
+    auto driver = thermal_wall<3>(1.0, "redraw", 4);
+    WallReflection<3>* rule = driver->walls().at(1).reflection;
     double sum2 = 0;
     const int n = 100000;
     for (int k = 0; k < n; ++k) {
         Vec<3> v(5.0, 1.0, 5.0);
-        thermal_wall_rule<3>(v, 1, -1.0, 0.0, w, rng, 1.0);
+        rule->reflect(v, 1, -1.0, 0.0, 1.0);
         ASSERT_LT(v[1], 0.0);
         sum2 += v[0] * v[0] + v[2] * v[2];
     }

@@ -31,14 +31,21 @@ struct BedState {
     YAML::Node summary;
 };
 
-BedState run_bed(const std::string& engine, const std::string& driver, const std::string& tag) {
+// The bed's grains and its floor with restitution 0.5, the top of the box elastic.
+const char* kEventDrivenContacts = "{alpha: 0.5, pairs: [{between: [g, box], alpha: 1}]}";
+const char* kDemContacts =
+    "{law: linear_dashpot, restitution: 0.5, stiffness: 2.0e+5, pairs: [{between: [g, box], "
+    "restitution: 1}]}";
+
+BedState run_bed(const std::string& engine, const std::string& contacts,
+                 const std::string& driver, const std::string& tag) {
     const std::string yaml = fmt::format(R"(
 dimension: 2
 seed: 1
 gravity: [0, -1]
 box: {{lengths: [10, 40], periodic: [true, false]}}
 species: [{{name: g, count: 40, mass: 1, diameter: 1}}]
-interactions: {{alpha: 0.5}}
+interactions: {}
 initial: {{placement: lattice, temperature: 0.01}}
 engine: {}
 drivers: [{}]
@@ -47,7 +54,7 @@ output: {{frames: 1}}
 run: {{unit: time, equilibration: 40, measurement: 5, sample_interval: 1,
       watchdog: {{max_events_per_tc: 1000}}}}
 )",
-                                         engine, driver);
+                                         contacts, engine, driver);
     BedState b;
     b.summary = testing::run_yaml(yaml, tag);
     auto f = h5::File::open_read((testing::temp_dir() / (tag + ".h5")).string());
@@ -74,17 +81,17 @@ void expect_at_rest(const BedState& b, double floor, double ke_bound) {
 }
 
 TEST(GravityBed, EventDrivenBedComesToRestOnAStaticFloor) {
-    const BedState b = run_bed("{tc: 1.0e-2}",
-                               "{type: static_wall, axis: y, side: lower, restitution: 0.5}", "ed");
+    const BedState b = run_bed("{tc: 1.0e-2}", kEventDrivenContacts,
+                               "{type: static_wall, axis: y, side: lower}", "ed");
     expect_at_rest(b, 0.0, 1e-3);
 }
 
 TEST(GravityBed, EventDrivenBedStaysAtRestOnAWeaklyVibratedFloor) {
     // A = 1e-3 d, f = 1 / sqrt(d/g): W = (A omega)^2 / (g d) = 4e-5, Gamma = 0.04.
     const BedState b = run_bed(
-        "{tc: 1.0e-2}",
+        "{tc: 1.0e-2}", kEventDrivenContacts,
         "{type: vibrating_wall, axis: y, side: lower, waveform: sinusoid, amplitude: 1.0e-3, "
-        "frequency: 1, restitution: 0.5}",
+        "frequency: 1}",
         "ed_vibrated");
     // The floor's speed A omega = 6e-3 adds at most m (A omega)^2 / 2 = 2e-5: bound 1e-3 again.
     expect_at_rest(b, 1.0e-3, 1e-3);
@@ -92,8 +99,7 @@ TEST(GravityBed, EventDrivenBedStaysAtRestOnAWeaklyVibratedFloor) {
 
 TEST(GravityBed, DemBedRestsOnAStaticFloorWithTheWeightInItsContacts) {
     const BedState b =
-        run_bed("{type: dem, stiffness: 2.0e+5}",
-                "{type: static_wall, axis: y, side: lower, restitution: 0.5}", "dem");
+        run_bed("{type: dem}", kDemContacts, "{type: static_wall, axis: y, side: lower}", "dem");
     expect_at_rest(b, 0.0, 1e-6);
     // Statics: the floor springs carry the whole weight N m g.
     double floor_force = 0;

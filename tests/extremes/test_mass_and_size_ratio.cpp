@@ -16,6 +16,7 @@
 #include "libgran/scene/placement.hpp"
 #include "libgran/run/run.hpp"
 #include "libgran/scene/scene.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/periodic_cube.hpp"
 #include "tests/support/run_scene.hpp"
@@ -40,7 +41,7 @@ TEST(MassRatioExtremes, ElasticMixtureWithMassRatio1000ReachesEquipartition) {
     SpeciesTable t;
     t.species.push_back(Species{"heavy", 1000.0, 1.0, 0.5, 300});
     t.species.push_back(Species{"light", 1.0, 1.0, 0.5, 300});
-    t.pairs.assign(4, PairCoefficients{});
+    const ContactTable c = testing::contacts_of(t, "", D);
     const Box<D> box = testing::cube_for<D>(t, 0.2, true);
     Rng rng = make_rng(31, Stream::Placement);
     auto p = place_random<D>(box, t, rng);
@@ -55,7 +56,7 @@ TEST(MassRatioExtremes, ElasticMixtureWithMassRatio1000ReachesEquipartition) {
     }
     const double e0 = testing::translational_energy<D>(p, t);
     const Vec<D> p0 = testing::momentum<D>(p, t);
-    EventDrivenEngine<D> engine(box, t, p, EngineSettings{});
+    EventDrivenEngine<D> engine(box, t, c, p, EngineSettings{});
     const std::uint64_t per_heavy = 600 / 2;  // collisions for 1 collision per particle
     engine.advance(kInf, 1200 * per_heavy);
     constexpr int kBlocks = 20;
@@ -89,7 +90,7 @@ void check_size_ratio_ten(std::size_t n_big, std::size_t n_small, double length,
     SpeciesTable t;
     t.species.push_back(Species{"big", 100.0, 10.0, D == 2 ? 0.5 : 0.4, n_big});
     t.species.push_back(Species{"small", 1.0, 1.0, D == 2 ? 0.5 : 0.4, n_small});
-    t.pairs.assign(4, PairCoefficients{});
+    const ContactTable c = testing::contacts_of(t, "", D);
     Box<D> box;
     box.length = Vec<D>::Constant(length);
     box.periodic.fill(true);
@@ -97,7 +98,7 @@ void check_size_ratio_ten(std::size_t n_big, std::size_t n_small, double length,
     auto p = place_random<D>(box, t, rng);
     maxwellian_velocities<D>(p, t, 1.0, rng);
     const double e0 = testing::translational_energy<D>(p, t);
-    EventDrivenEngine<D> engine(box, t, p, EngineSettings{});
+    EventDrivenEngine<D> engine(box, t, c, p, EngineSettings{});
     std::uint64_t big_small = 0;
     for (int k = 1; k <= 5; ++k) {
         engine.advance(kInf, collisions * std::uint64_t(k) / 5);

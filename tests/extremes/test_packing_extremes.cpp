@@ -29,6 +29,7 @@
 #include "libgran/core/kinetic_theory.hpp"
 #include "libgran/scene/placement.hpp"
 #include "libgran/run/run.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/contains.hpp"
 #include "tests/support/run_scene.hpp"
@@ -142,7 +143,7 @@ template <int D>
 void check_dense_never_overlaps(double phi, std::size_t n, const Vec<D>& aspect) {
     SpeciesTable t;
     t.species.push_back(Species{"a", 1.0, 1.0, 0.5, n});
-    t.pairs.assign(1, PairCoefficients{});
+    const ContactTable c = testing::contacts_of(t, "", D);
     const double volume = double(n) * theory::unit_ball_volume(D) / phi;
     Box<D> box;
     box.length = aspect * std::pow(volume / aspect.prod(), 1.0 / D);
@@ -152,7 +153,7 @@ void check_dense_never_overlaps(double phi, std::size_t n, const Vec<D>& aspect)
     maxwellian_velocities<D>(p, t, 1.0, rng);
     EXPECT_GT(testing::closest_approach<D>(p, t, box), 1.0);
     const double e0 = testing::translational_energy<D>(p, t);
-    EventDrivenEngine<D> engine(box, t, p, EngineSettings{});
+    EventDrivenEngine<D> engine(box, t, c, p, EngineSettings{});
     for (int k = 1; k <= 4; ++k) {
         engine.advance(kInf, std::uint64_t(k) * 25 * n);
         engine.synchronize();

@@ -13,6 +13,7 @@
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/core/h5.hpp"
 #include "libgran/scene/placement.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/run_scene.hpp"
 
@@ -23,7 +24,7 @@ template <int D>
 void check_exactly_elastic(std::uint64_t seed) {
     SpeciesTable t;
     t.species.push_back(Species{"a", 1.0, 1.0, D == 2 ? 0.5 : 0.4, 500});
-    t.pairs.assign(1, PairCoefficients{});  // alpha = 1, smooth
+    const ContactTable c = testing::contacts_of(t, "", D);  // alpha = 1, smooth
     Box<D> box;
     box.length = Vec<D>::Constant(std::pow(500 * (D == 2 ? M_PI / 4 : M_PI / 6) / 0.3, 1.0 / D));
     box.periodic.fill(true);
@@ -32,7 +33,7 @@ void check_exactly_elastic(std::uint64_t seed) {
     maxwellian_velocities<D>(p, t, 1.0, rng);
     const double e0 = testing::translational_energy<D>(p, t);
     const Vec<D> p0 = testing::momentum<D>(p, t);
-    EventDrivenEngine<D> engine(box, t, p, EngineSettings{});
+    EventDrivenEngine<D> engine(box, t, c, p, EngineSettings{});
     engine.advance(kInf, 200000);
     engine.synchronize();
     const auto& q = engine.particles();

@@ -13,6 +13,7 @@
 #include "libgran/scene/placement.hpp"
 #include "libgran/run/run.hpp"
 #include "libgran/scene/scene.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/contains.hpp"
 
@@ -34,17 +35,16 @@ template <int D>
 void check_perfectly_rough_elastic() {
     SpeciesTable t;
     t.species.push_back(Species{"a", 1.0, 1.0, D == 2 ? 0.5 : 0.4, 400});
-    PairCoefficients c;
-    c.beta = 1.0;
-    t.pairs.assign(1, c);
+    const ContactTable c = testing::contacts_of(t, "{beta: 1.0}", D);
     const Box<D> box = periodic_box<D>(t, 0.2);
     Rng rng = make_rng(21, Stream::Placement);
     auto p = place_random<D>(box, t, rng);
+    testing::allocate_rotation<D>(p, c);
     maxwellian_velocities<D>(p, t, 1.0, rng);
     // Start with no spin: the rough collisions must feed rotation from translation.
     for (auto& w : p.w) w = ang_zero<D>();
     const double e0 = testing::translational_energy<D>(p, t);
-    EventDrivenEngine<D> engine(box, t, p, EngineSettings{});
+    EventDrivenEngine<D> engine(box, t, c, p, EngineSettings{});
     engine.advance(kInf, 200000);
     engine.synchronize();
     const auto& q = engine.particles();
@@ -70,18 +70,15 @@ void check_smooth_leaves_spin_alone() {
     SpeciesTable t;
     t.species.push_back(Species{"a", 1.0, 1.0, D == 2 ? 0.5 : 0.4, 200});
     t.species.push_back(Species{"b", 1.0, 1.0, D == 2 ? 0.5 : 0.4, 200});
-    PairCoefficients smooth;
-    smooth.alpha = 0.9;
-    smooth.restitution = constant_impact_restitution(0.9);
-    PairCoefficients rough = smooth;
-    rough.beta = 1.0;
-    t.pairs = {smooth, smooth, smooth, rough};
+    const ContactTable c =
+        testing::contacts_of(t, "{alpha: 0.9, pairs: [{between: [b, b], beta: 1.0}]}", D);
     const Box<D> box = periodic_box<D>(t, 0.2);
     Rng rng = make_rng(22, Stream::Placement);
     auto p = place_random<D>(box, t, rng);
+    testing::allocate_rotation<D>(p, c);
     maxwellian_velocities<D>(p, t, 1.0, rng);
     ASSERT_TRUE(p.rotating());
-    EventDrivenEngine<D> engine(box, t, p, EngineSettings{});
+    EventDrivenEngine<D> engine(box, t, c, p, EngineSettings{});
     engine.advance(kInf, 50000);
     engine.synchronize();
     const auto& q = engine.particles();
@@ -108,10 +105,10 @@ TEST(RoughnessExtremes, DemRefusesTangentialRestitutionAndPointsToFriction) {
         const std::string yaml = std::string(R"(
 dimension: 2
 species: [{name: a, count: 10}]
-interactions: {alpha: 0.9, beta: )") +
+interactions: {law: linear_dashpot, restitution: 0.9, stiffness: 1e5, beta: )") +
                                  beta + R"(}
 box: {packing_fraction: 0.1}
-engine: {type: dem, stiffness: 1e5}
+engine: {type: dem}
 run: {unit: time, measurement: 1}
 )";
         try {
@@ -119,7 +116,8 @@ run: {unit: time, measurement: 1}
             ADD_FAILURE() << "beta = " << beta << " was accepted on the dem engine";
         } catch (const SceneError& e) {
             EXPECT_TRUE(testing::contains(e.what(), "rough_dem.yaml"));
-            EXPECT_TRUE(testing::contains(e.what(), "engine.friction"));
+            EXPECT_TRUE(testing::contains(e.what(), "interactions.beta"));
+            EXPECT_TRUE(testing::contains(e.what(), "friction"));
         }
     }
 }

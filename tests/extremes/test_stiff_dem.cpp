@@ -30,7 +30,8 @@ seed: 2
 species: [{{name: a, count: 50}}]
 box: {{packing_fraction: 0.3}}
 initial: {{temperature: 100}}
-engine: {{type: dem, stiffness: {}}}
+interactions: {{law: linear_dashpot, stiffness: {}}}
+engine: {{type: dem}}
 observables: [{{type: kinetic_energy}}, {{type: collision_statistics}}]
 run: {{unit: time, measurement: 0.3, sample_interval: 0.01}}
 )",
@@ -67,9 +68,9 @@ TEST(StiffDem, StiffnessOf1e10KeepsAnInelasticRestitution) {
     const YAML::Node s = testing::run_yaml(R"(
 dimension: 3
 species: [{name: a, count: 20}]
-interactions: {alpha: 0.9}
+interactions: {law: linear_dashpot, restitution: 0.9, stiffness: 1.0e+10}
 box: {packing_fraction: 0.1}
-engine: {type: dem, stiffness: 1.0e+10}
+engine: {type: dem}
 run: {unit: time, measurement: 1.0e-3, sample_interval: 1.0e-3}
 )",
                                            "k1e10_e09");
@@ -84,7 +85,8 @@ TEST(StiffDem, StiffnessThatWouldNeedCenturiesOfStepsIsRefused) {
 dimension: 2
 species: [{name: a, count: 50}]
 box: {packing_fraction: 0.3}
-engine: {type: dem, stiffness: 1.0e+300}
+interactions: {law: linear_dashpot, stiffness: 1.0e+300}
+engine: {type: dem}
 run: {unit: time, measurement: 1}
 )";
     try {
@@ -93,7 +95,8 @@ run: {unit: time, measurement: 1}
     } catch (const SceneError& e) {
         EXPECT_TRUE(testing::contains(e.what(), "stiff.yaml:"));
         EXPECT_TRUE(testing::contains(e.what(), "steps"));
-        EXPECT_TRUE(testing::contains(e.what(), "engine.stiffness"));
+        EXPECT_TRUE(testing::contains(e.what(), "stiffness"));
+        EXPECT_TRUE(testing::contains(e.what(), "interactions"));
     }
 }
 

@@ -109,9 +109,9 @@ seed: 1
 gravity: [0, -1]
 box: {lengths: [10, 40], periodic: [true, false]}
 species: [{name: g, count: 40, mass: 1, diameter: 1}]
-interactions: {alpha: 0.5}
+interactions: {alpha: 0.5, pairs: [{between: [g, box], alpha: 1}]}
 initial: {placement: lattice, temperature: 0.01}
-drivers: [{type: static_wall, axis: y, side: lower, restitution: 0.5}]
+drivers: [{type: static_wall, axis: y, side: lower}]
 observables: [{type: barycentric_height}, {type: kinetic_energy}]
 run: {unit: time, measurement: 50, sample_interval: 1}
 )";
@@ -134,7 +134,8 @@ seed: 1
 gravity: [0, -1e300]
 box: {lengths: [10, 20], periodic: [true, false]}
 species: [{name: g, count: 20, mass: 1, diameter: 1}]
-engine: {type: dem, stiffness: 1e5}
+interactions: {law: linear_dashpot, stiffness: 1e5}
+engine: {type: dem}
 observables: [{type: kinetic_energy}]
 run: {unit: time, measurement: 1, sample_interval: 0.1, watchdog: {window: 100}}
 )",

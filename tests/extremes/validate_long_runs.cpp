@@ -25,6 +25,7 @@
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/placement.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/periodic_cube.hpp"
 
@@ -39,13 +40,13 @@ TEST(LongRuns, EventDrivenBillionEventsKeepTimeEnergyAndCostPerEvent) {
     constexpr int D = 2;
     SpeciesTable t;
     t.species.push_back(Species{"a", 1.0, 1.0, 0.5, 100});
-    t.pairs.assign(1, PairCoefficients{});
+    const ContactTable c = testing::contacts_of(t, "", D);
     const Box<D> box = testing::cube_for<D>(t, 0.3, true);
     Rng rng = make_rng(61, Stream::Placement);
     auto p = place_random<D>(box, t, rng);
     maxwellian_velocities<D>(p, t, 1.0, rng);
     const double e0 = testing::translational_energy<D>(p, t);
-    EventDrivenEngine<D> engine(box, t, p, EngineSettings{});
+    EventDrivenEngine<D> engine(box, t, c, p, EngineSettings{});
     constexpr std::uint64_t kChunk = 100000000;
     std::vector<double> freq, cost;
     double t_prev = engine.now();
@@ -84,16 +85,12 @@ TEST(LongRuns, DemHundredMillionStepsKeepTimeEnergyAndCostPerStep) {
     constexpr int D = 2;
     SpeciesTable t;
     t.species.push_back(Species{"a", 1.0, 1.0, 0.5, 16});
-    t.pairs.assign(1, PairCoefficients{});
-    DemContactSpec spec;
-    spec.k_n = 1e4;
-    spec.e = 1;
-    const DemContactTable table(t, DemLaw::linear_dashpot, spec);
+    const ContactTable c = testing::contacts_of(t, "{law: linear_dashpot, stiffness: 1e4}", D);
     const Box<D> box = testing::cube_for<D>(t, 0.2, true);
     Rng rng = make_rng(62, Stream::Placement);
     auto p = place_random<D>(box, t, rng);
     maxwellian_velocities<D>(p, t, 1.0, rng);
-    DemEngine<D> engine(box, t, table, p, DemSettings{});
+    DemEngine<D> engine(box, t, c, p, DemSettings{});
     const double e0 = engine.energies().total();
     const double dt = engine.dt();
     constexpr std::uint64_t kChunk = 10000000;

@@ -67,6 +67,7 @@ species:
 interactions:
   alpha: {a12}
   beta: {b}
+  walls: {{alpha: 1}}
   pairs:
     - {{between: [heavy, heavy], alpha: {a11}}}
     - {{between: [light, light], alpha: {a22}}}

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <utility>
 
+#include "libgran/engines/event_driven/collision_rules.hpp"  // rough_collision
 #include "species/contact_laws.hpp"
 
 namespace gran {

@@ -239,45 +239,5 @@ TEST(ViscoelasticRestitution, DecreasingOnValidityRangeAndBoundedBeyond) {
     EXPECT_NEAR(prev, 7.0 / 12.0, 1e-15);
 }
 
-// ----- Dispatcher ---------------------------------------------------------------------------
-
-static_assert(std::is_trivially_copyable_v<ImpactRestitution>);
-static_assert(std::is_standard_layout_v<ImpactRestitution>);
-
-TEST(ImpactRestitution, ConstantIsExact) {
-    for (double e : {0.0, 0.3, 0.85, 0.95, 1.0, 0.1 + 0.2}) {
-        const ImpactRestitution law = constant_impact_restitution(e);
-        for (double v : {0.0, 1e-300, 0.5, -3.0, 1e300, std::numeric_limits<double>::infinity()}) {
-            EXPECT_EQ(restitution(law, v), e);  // bitwise, not approximately
-        }
-    }
-    EXPECT_EQ(restitution(ImpactRestitution{}, 2.0), 1.0);  // default: elastic
-}
-
-TEST(ImpactRestitution, DispatchesToKernels) {
-    const ImpactRestitution mfl = mcnamara_falcon_impact_restitution(kR0, kV0);
-    const ImpactRestitution vel = viscoelastic_impact_restitution(0.1);
-    for (double v : log_grid(1e-4, 1e4, 33)) {
-        EXPECT_EQ(restitution(mfl, v), mf(v));
-        EXPECT_EQ(restitution(mfl, -v), mf(v));  // g_n < 0 for an approaching pair
-        EXPECT_EQ(restitution(vel, v), viscoelastic_restitution(v, 0.1));
-        EXPECT_EQ(restitution(vel, -v), viscoelastic_restitution(v, 0.1));
-    }
-}
-
-TEST(ImpactRestitution, ValidatesParameters) {
-    EXPECT_EQ(impact_restitution_problem(constant_impact_restitution(0.9)), nullptr);
-    EXPECT_NE(impact_restitution_problem(constant_impact_restitution(1.1)), nullptr);
-    EXPECT_NE(impact_restitution_problem(constant_impact_restitution(-0.1)), nullptr);
-    EXPECT_EQ(impact_restitution_problem(mcnamara_falcon_impact_restitution(kR0, kV0)), nullptr);
-    EXPECT_NE(impact_restitution_problem(mcnamara_falcon_impact_restitution(1.2, kV0)), nullptr);
-    EXPECT_NE(impact_restitution_problem(mcnamara_falcon_impact_restitution(kR0, 0.0)), nullptr);
-    EXPECT_EQ(impact_restitution_problem(viscoelastic_impact_restitution(0.0)), nullptr);
-    EXPECT_NE(impact_restitution_problem(viscoelastic_impact_restitution(-1e-3)), nullptr);
-    EXPECT_NE(impact_restitution_problem(
-                  viscoelastic_impact_restitution(std::numeric_limits<double>::quiet_NaN())),
-              nullptr);
-}
-
 }  // namespace
 }  // namespace gran

@@ -7,7 +7,7 @@
 
 #include "libgran/core/box.hpp"
 #include "libgran/core/particles.hpp"
-#include "species/species.hpp"
+#include "libgran/core/species.hpp"
 
 namespace gran::testing {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "libgran/core/box.hpp"
-#include "species/species.hpp"
+#include "libgran/core/species.hpp"
 
 namespace gran::testing {
 

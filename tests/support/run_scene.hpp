@@ -54,7 +54,7 @@ inline YAML::Node run_yaml_once(const std::string& yaml, const std::string& tag)
 // (v0 = 1) at y = 0 and L, periodic in x, mean packing fraction 0.04.
 inline std::string vibrated_gas(int count, double alpha, const std::string& observables) {
     return "dimension: 2\nseed: 3\nspecies: [{name: a, count: " + std::to_string(count) +
-           "}]\ninteractions: {alpha: " + std::to_string(alpha) +
+           "}]\ninteractions: {walls: {alpha: 1}, alpha: " + std::to_string(alpha) +
            "}\nbox: {packing_fraction: 0.04, periodic: [true, false]}\n"
            "drivers: [{type: sawtooth_wall, axis: y, velocity: 1}]\nobservables: " +
            observables + "\nrun: {equilibration: 200, measurement: 4000, sample_interval: 2}\n";

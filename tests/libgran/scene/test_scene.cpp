@@ -32,9 +32,9 @@ TEST(Scene, NumberFractionsResolveToCountsAndBoxFromPackingFraction) {
     EXPECT_EQ(s.species.species[1].count, 100u);
     EXPECT_NEAR(s.packing_fraction, 0.1, 1e-12);
     EXPECT_DOUBLE_EQ(s.species.species[0].inertia_factor, 0.5);  // disks
-    EXPECT_DOUBLE_EQ(s.species.pair(0, 1).alpha, 0.8);
-    EXPECT_DOUBLE_EQ(s.species.pair(1, 0).alpha, 0.8);
-    EXPECT_DOUBLE_EQ(s.species.pair(0, 0).alpha, 0.9);
+    EXPECT_DOUBLE_EQ(s.contacts.nominal_restitution[0 * 2 + 1], 0.8);
+    EXPECT_DOUBLE_EQ(s.contacts.nominal_restitution[1 * 2 + 0], 0.8);
+    EXPECT_DOUBLE_EQ(s.contacts.nominal_restitution[0 * 2 + 0], 0.9);
 }
 
 TEST(Scene, ResolvedSceneIsItselfAValidSceneThatRerunsIdentically) {
@@ -59,7 +59,7 @@ TEST(Scene, OverrideChangesNestedKeysAndListEntries) {
     const Scene s = parse_scene(root, "s.yaml");
     EXPECT_DOUBLE_EQ(s.species.species[1].mass, 2.5);
     EXPECT_DOUBLE_EQ(s.schedule.measurement, 40);
-    EXPECT_DOUBLE_EQ(s.engine.tc, 1e-5);
+    EXPECT_DOUBLE_EQ(s.engine_settings.params.real("tc"), 1e-5);
     EXPECT_THROW(apply_override(root, "species.7.mass=1"), SceneError);
     EXPECT_THROW(apply_override(root, "novalue"), SceneError);
 }

@@ -17,6 +17,8 @@
 
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/scene/placement.hpp"
+#include "species/contact_laws.hpp"
+#include "tests/support/contacts.hpp"
 
 namespace gran {
 namespace {
@@ -37,8 +39,21 @@ Species make_species(const std::string& name, double mass, double diameter, doub
 SpeciesTable table_of(std::vector<Species> species) {
     SpeciesTable t;
     t.species = std::move(species);
-    t.pairs.assign(t.species.size() * t.species.size(), PairCoefficients{});
     return t;
+}
+
+// Soft contacts of `law` with the keys `keys` (the body of a YAML map) for every contact and
+// `walls` (likewise) for grain-wall contacts (empty: the same as the grains'). The one wall
+// partner is the box's (index 0).
+ContactTable soft(const SpeciesTable& t, const std::string& law, const std::string& keys,
+                  const std::string& walls = "") {
+    std::string yaml = "{law: " + law + ", " + keys;
+    if (!walls.empty()) yaml += ", walls: {" + walls + "}";
+    return testing::contacts_of(t, yaml + "}");
+}
+
+double duration(const ContactTable& c, std::size_t index) {
+    return c.law->soft_contact->duration(*c.table, index);
 }
 
 template <int D>
@@ -91,12 +106,12 @@ struct Collision {
 // a periodic box, in the centre-of-mass frame at relative speed v; the contact starts a fraction
 // `phase` of a step after t = 0. Contact duration from the interpolated zero crossings of delta.
 template <int D>
-Collision head_on_pair(DemLaw law, const DemContactSpec& spec, double v, double phase) {
+Collision head_on_pair(const std::string& law, const std::string& keys, double v, double phase) {
     const SpeciesTable t =
         table_of({make_species("a", 1, 1, 0.4, 1), make_species("b", 3, 1.5, 0.4, 1)});
-    const DemContactTable contacts(t, law, spec);
-    const DemContactParams& P = contacts.pair(0, 1);
-    const double dt = P.duration / 50;
+    const ContactTable contacts = soft(t, law, keys);
+    const double t_c = duration(contacts, contacts.pair_index(0, 1)), sigma = 1.25;
+    const double dt = t_c / 50;
     Particles<D> p;
     p.resize(2, false);
     p.species = {0, 1};
@@ -112,7 +127,7 @@ Collision head_on_pair(DemLaw law, const DemContactSpec& spec, double v, double 
     DemEngine<D> e(make_box<D>(10, true), t, contacts, p, settings);
     const auto overlap = [&] {
         const auto& ps = e.particles();
-        return P.sigma - e.box().separation(ps.r[0], ps.r[1]).norm();
+        return sigma - e.box().separation(ps.r[0], ps.r[1]).norm();
     };
     Collision out;
     double before = overlap(), t_in = 0, t_out = 0;
@@ -135,7 +150,7 @@ Collision head_on_pair(DemLaw law, const DemContactSpec& spec, double v, double 
     const auto& ps = e.particles();
     out.restitution = -(ps.v[0] - ps.v[1]).dot(n) / -v;
     out.duration = t_out - t_in;
-    out.expected_duration = P.duration;
+    out.expected_duration = t_c;
     return out;
 }
 
@@ -146,12 +161,10 @@ Collision head_on_pair(DemLaw law, const DemContactSpec& spec, double v, double 
 // tried); duration within 1 % (interpolated crossings, error O(dt^2 / t_c)).
 template <int D>
 void check_pair_collisions() {
-    DemContactSpec spec;
-    spec.t_c = 2e-3;
-    spec.e = 0.9;
     for (double phase : {0.0, 0.25, 0.5, 0.75}) {
         for (double v : {0.3, 3.0}) {
-            const Collision c = head_on_pair<D>(DemLaw::linear_dashpot, spec, v, phase);
+            const Collision c =
+                head_on_pair<D>("linear_dashpot", "contact_time: 2e-3, restitution: 0.9", v, phase);
             EXPECT_NEAR(c.restitution, 0.9, 0.005 * 0.9) << "phase " << phase << " v " << v;
             EXPECT_NEAR(c.duration, 2e-3, 0.01 * 2e-3) << "phase " << phase << " v " << v;
             EXPECT_NEAR(c.expected_duration, 2e-3, 1e-12);
@@ -171,17 +184,15 @@ TEST(DemEngine, HeadOnPairCollisionHasTheRequestedRestitutionAndDuration3D) {
 // speed-independent e and t_c at the reference speed (tau_c(alpha) (m/k)^{2/5} v^{-1/5}).
 // Same tolerances as above.
 TEST(DemEngine, CundallStrackAndHertzMindlinHeadOnCollisionsMatchTheirClosedForms) {
-    DemContactSpec spec;
-    spec.t_c = 2e-3;
-    spec.e = 0.9;
-    spec.reference_speed = 1.5;
-    for (DemLaw law : {DemLaw::cundall_strack, DemLaw::hertz_mindlin}) {
-        const Collision c = head_on_pair<3>(law, spec, 1.5, 0.3);
-        EXPECT_NEAR(c.restitution, 0.9, 0.005 * 0.9) << dem_law_name(law);
-        EXPECT_NEAR(c.duration, 2e-3, 0.01 * 2e-3) << dem_law_name(law);
+    const std::string linear = "contact_time: 2e-3, restitution: 0.9";
+    const std::string hertz = linear + ", reference_speed: 1.5";
+    for (const auto& [law, keys] : {std::pair{"cundall_strack", linear}, {"hertz_mindlin", hertz}}) {
+        const Collision c = head_on_pair<3>(law, keys, 1.5, 0.3);
+        EXPECT_NEAR(c.restitution, 0.9, 0.005 * 0.9) << law;
+        EXPECT_NEAR(c.duration, 2e-3, 0.01 * 2e-3) << law;
     }
     // Hertz: e does not depend on the impact speed, t_c scales as v^{-1/5}.
-    const Collision slow = head_on_pair<3>(DemLaw::hertz_mindlin, spec, 1.5 / 32, 0.3);
+    const Collision slow = head_on_pair<3>("hertz_mindlin", hertz, 1.5 / 32, 0.3);
     EXPECT_NEAR(slow.restitution, 0.9, 0.005 * 0.9);
     EXPECT_NEAR(slow.duration, 2e-3 * 2.0, 0.01 * 4e-3);  // 32^{1/5} = 2
 }
@@ -193,15 +204,13 @@ TEST(DemEngine, CundallStrackAndHertzMindlinHeadOnCollisionsMatchTheirClosedForm
 template <int D>
 void check_wall_collision(double phase) {
     const SpeciesTable t = table_of({make_species("a", 2, 1, 0.4, 1)});
-    DemContactSpec pair, wall;
-    pair.k_n = 1e5;
-    pair.e = 0.5;
-    wall.k_n = 1e5;
-    wall.e = 0.92;
-    const DemContactTable contacts(t, DemLaw::linear_dashpot, pair, wall);
-    const DemContactParams& P = contacts.wall(0);
-    EXPECT_DOUBLE_EQ(P.m_eff, 2.0);  // infinite wall mass
-    const double dt = P.duration / 50, v = 1.3;
+    const ContactTable contacts =
+        soft(t, "linear_dashpot", "stiffness: 1e5, restitution: 0.5", "restitution: 0.92");
+    const double t_c = duration(contacts, contacts.wall_index(0, 0));
+    // Infinite wall mass: the contact's reduced mass is the grain's, m = 2.
+    EXPECT_DOUBLE_EQ(t_c, linear_contact_duration(1e5, 2.0,
+                                                  linear_damping_from_restitution(1e5, 2.0, 0.92)));
+    const double dt = t_c / 50, v = 1.3;
     Particles<D> p;
     p.resize(1, false);
     p.r[0] = Vec<D>::Constant(2.5);
@@ -225,7 +234,7 @@ void check_wall_collision(double phase) {
     const double v_after = e.particles().v[0][D - 1];
     // Tolerances as for pairs: 2 |ln 0.92| / 50 = 0.33 % < 0.5 %; duration 1 %.
     EXPECT_NEAR(v_after / v, 0.92, 0.005 * 0.92) << "phase " << phase;
-    EXPECT_NEAR(t_out - t_in, P.duration, 0.01 * P.duration) << "phase " << phase;
+    EXPECT_NEAR(t_out - t_in, t_c, 0.01 * t_c) << "phase " << phase;
     EXPECT_EQ(e.wall_hits()[2 * (D - 1)], 1u);
     EXPECT_EQ(e.wall_hits()[2 * (D - 1) + 1], 0u);
     // The wall's impulse, sum of F_n dt, is the momentum change m (v' + v) (to O(dt) of a step's
@@ -246,16 +255,13 @@ TEST(DemEngine, WallCollisionHasTheWallRestitutionAndDuration3D) {
 // accelerates during the contact, which changes u by about omega t_c tan(theta) = 1e-3 relative.
 TEST(DemEngine, SinusoidalFloorLaunchesAParticleAtRestWithOnePlusETimesItsVelocity) {
     const SpeciesTable t = table_of({make_species("a", 1, 1, 0.4, 1)});
-    DemContactSpec spec;
-    spec.t_c = 1e-3;
-    spec.e = 0.9;
-    const DemContactTable contacts(t, DemLaw::linear_dashpot, spec, spec);
+    const ContactTable contacts = soft(t, "linear_dashpot", "contact_time: 1e-3, restitution: 0.9");
     const double A = 1, omega = 1, theta = kPi / 6;  // contact when omega t = theta
     Particles<3> p;
     p.resize(1, false);
     p.r[0] = Vec<3>(2.5, 2.5, 0.5 + A + A * std::sin(theta));
     DemEngine<3> e(make_box<3>(5, true, 20), t, contacts, p, DemSettings{});
-    e.set_wall(2, 0, WallMotion::sinusoid(A, omega));
+    e.set_wall(2, 0, WallMotion::sinusoid(A, omega), 0);
     EXPECT_DOUBLE_EQ(e.wall_position(4, 0.0), A);
     e.advance(theta / omega + 0.01);  // 10 contact durations after the contact
     const double u = A * omega * std::cos(theta);
@@ -273,15 +279,11 @@ TEST(DemEngine, SinusoidalFloorLaunchesAParticleAtRestWithOnePlusETimesItsVeloci
 // the paper's lever arm is R (Eq. A3), and the dashpot's g_t decays exponentially (time m_t /
 // gamma_t = 6e-3, run 300 times longer).
 template <int D>
-void check_rolling(DemLaw law, double q) {
+void check_rolling(const std::string& law, double q) {
     const double g = 1, v0 = 1, k = 2e5;
     const SpeciesTable t = table_of({make_species("a", 1, 1, q, 1)});
-    DemContactSpec spec;
-    spec.k_n = k;
-    spec.e = 0.9;
-    spec.mu = 0.4;
-    spec.gamma_t = 50;
-    const DemContactTable contacts(t, law, spec);
+    const ContactTable contacts = soft(
+        t, law, "stiffness: 2e5, restitution: 0.9, friction: 0.4, tangential_damping: 50");
     Particles<D> p;
     p.resize(1, false);
     p.r[0] = Vec<D>::Constant(2.5);
@@ -293,7 +295,7 @@ void check_rolling(DemLaw law, double q) {
     ASSERT_TRUE(e.particles().rotating());
     e.advance(2.0);  // sliding ends at v0 q / (mu g (1 + q)) < 0.4
     const auto& ps = e.particles();
-    EXPECT_NEAR(ps.v[0][0] / v0, 1 / (1 + q), 1e-3) << dem_law_name(law) << " D " << D;
+    EXPECT_NEAR(ps.v[0][0] / v0, 1 / (1 + q), 1e-3) << law << " D " << D;
     // Rolling without slip: the contact point is at rest (to 1e-3 v0).
     const Vec<D> slip = contact_velocity<D>(ps.v[0], Vec<D>::Zero(), ps.w[0], ang_zero<D>(), 0.5,
                                             0.0, axis_vector<D>(D - 1));
@@ -301,7 +303,7 @@ void check_rolling(DemLaw law, double q) {
 }
 
 TEST(DemEngine, SlidingGrainEndsRollingAtOneOverOnePlusQ) {
-    for (DemLaw law : {DemLaw::linear_dashpot, DemLaw::cundall_strack}) {
+    for (const char* law : {"linear_dashpot", "cundall_strack"}) {
         check_rolling<2>(law, 0.5);
         check_rolling<3>(law, 0.4);
     }
@@ -346,10 +348,7 @@ Gas<D> periodic_gas(std::size_t n, double phi, std::uint64_t seed) {
 // sampled step (every 10 steps).
 TEST(DemEngine, ElasticGasConservesEnergyWithinOnePartPerMillionOverAMillionSteps) {
     Gas<3> g = periodic_gas<3>(100, 0.2, 7);
-    DemContactSpec spec;
-    spec.t_c = 0.02;
-    spec.e = 1;
-    const DemContactTable contacts(g.table, DemLaw::linear_dashpot, spec);
+    const ContactTable contacts = soft(g.table, "linear_dashpot", "contact_time: 0.02");
     DemSettings settings;
     settings.dt_fraction = 1.0 / 2000;
     DemEngine<3> e(g.box, g.table, contacts, g.particles, settings);
@@ -373,14 +372,10 @@ TEST(DemEngine, ElasticGasConservesEnergyWithinOnePartPerMillionOverAMillionStep
 // so the total momentum of a periodic system changes by round-off only, with damping, friction and
 // tangential springs. Tolerance 1e-13 of sum m |v|.
 template <int D>
-void check_momentum(DemLaw law) {
+void check_momentum(const std::string& law) {
     Gas<D> g = periodic_gas<D>(200, 0.35, 11);
-    DemContactSpec spec;
-    spec.t_c = 0.02;
-    spec.e = 0.7;
-    spec.mu = 0.4;
-    spec.gamma_t = 5;
-    const DemContactTable contacts(g.table, law, spec);
+    const ContactTable contacts = soft(
+        g.table, law, "contact_time: 0.02, restitution: 0.7, friction: 0.4, tangential_damping: 5");
     DemEngine<D> e(g.box, g.table, contacts, g.particles, DemSettings{});
     double scale = 0;
     for (std::size_t i = 0; i < g.particles.size(); ++i) {
@@ -389,11 +384,11 @@ void check_momentum(DemLaw law) {
     const Vec<D> p0 = momentum(e);
     e.advance(2000 * e.dt());
     EXPECT_GT(e.counters().contacts, 100u);
-    EXPECT_LT((momentum(e) - p0).norm(), 1e-13 * scale) << dem_law_name(law) << " D " << D;
+    EXPECT_LT((momentum(e) - p0).norm(), 1e-13 * scale) << law << " D " << D;
 }
 
 TEST(DemEngine, PeriodicSystemConservesMomentumToRoundOff) {
-    for (DemLaw law : {DemLaw::linear_dashpot, DemLaw::cundall_strack}) {
+    for (const char* law : {"linear_dashpot", "cundall_strack"}) {
         check_momentum<2>(law);
         check_momentum<3>(law);
     }
@@ -407,10 +402,8 @@ TEST(DemEngine, PeriodicSystemConservesMomentumToRoundOff) {
 template <int D>
 void check_neighbour_list() {
     Gas<D> g = periodic_gas<D>(300, D == 2 ? 0.45 : 0.35, 3);
-    DemContactSpec spec;
-    spec.t_c = 0.05;
-    spec.e = 0.95;
-    const DemContactTable contacts(g.table, DemLaw::linear_dashpot, spec);
+    const ContactTable contacts =
+        soft(g.table, "linear_dashpot", "contact_time: 0.05, restitution: 0.95");
     DemSettings settings;
     settings.skin = 0.02;
     DemEngine<D> e(g.box, g.table, contacts, g.particles, settings);
@@ -460,10 +453,7 @@ void check_list_against_brute_force(const Box<D>& box, std::size_t n, const Vec<
                                     const Vec<D>& hi, unsigned seed, std::size_t min_pairs) {
     const SpeciesTable t =
         table_of({make_species("a", 1, 1, 0.4, n / 2), make_species("b", 0.5, 0.6, 0.4, n / 2)});
-    DemContactSpec spec;
-    spec.t_c = 0.05;
-    spec.e = 0.9;
-    const DemContactTable contacts(t, DemLaw::linear_dashpot, spec);
+    const ContactTable contacts = soft(t, "linear_dashpot", "contact_time: 0.05, restitution: 0.9");
     Particles<D> p;
     p.resize(n, false);
     std::mt19937_64 rng(seed);
@@ -547,11 +537,8 @@ TEST(DemEngine, NeighbourListEqualsBruteForceInEveryKindOfBox) {
 template <int D>
 void check_springs_survive_rebuilds() {
     const Gas<D> g = periodic_gas<D>(200, D == 2 ? 0.45 : 0.35, 21);
-    DemContactSpec spec;
-    spec.t_c = 0.05;
-    spec.e = 0.7;
-    spec.mu = 0.5;
-    const DemContactTable contacts(g.table, DemLaw::cundall_strack, spec);
+    const ContactTable contacts =
+        soft(g.table, "cundall_strack", "contact_time: 0.05, restitution: 0.7, friction: 0.5");
     DemSettings small, large;
     small.skin = 0.01;
     large.skin = 0.5;
@@ -581,13 +568,10 @@ TEST(DemEngine, TangentialSpringsSurviveNeighbourListRebuilds) {
 
 TEST(DemEngine, TimeStepDefaultsToAFiftiethOfTheShortestContactAndRefusesMoreThanAFifth) {
     const SpeciesTable t = table_of({make_species("a", 1, 1, 0.4, 1)});
-    DemContactSpec spec;
-    spec.t_c = 1e-3;
-    spec.e = 0.9;
-    const DemContactTable contacts(t, DemLaw::linear_dashpot, spec);
-    // The wall has the grain's spring and m_eff = m (not m / 2): a contact sqrt(2) longer.
-    EXPECT_NEAR(contacts.wall(0).k_n, contacts.pair(0, 0).k_n, 1e-9 * contacts.pair(0, 0).k_n);
-    EXPECT_GT(contacts.wall(0).duration, 1.4 * 1e-3);
+    const ContactTable contacts = soft(t, "linear_dashpot", "contact_time: 1e-3, restitution: 0.9");
+    // Every contact is resolved for its own reduced mass (a wall's: m): the same contact time.
+    EXPECT_NEAR(duration(contacts, contacts.pair_index(0, 0)), 1e-3, 1e-15);
+    EXPECT_NEAR(duration(contacts, contacts.wall_index(0, 0)), 1e-3, 1e-15);
     Particles<2> p;
     p.resize(1, false);
     p.r[0] = Vec<2>(2, 2);
@@ -611,13 +595,10 @@ TEST(DemEngine, TimeStepDefaultsToAFiftiethOfTheShortestContactAndRefusesMoreTha
 
 // The paper's stiffness: k_n = 2e5 m g / d (units m = d = g = 1), e_p = e_w = 0.9, mu_p = mu
 // (its smooth, 0, and rough, 0.4, systems; gamma_t is not given in the paper).
-DemContactSpec bed_contact(double mu) {
-    DemContactSpec spec;
-    spec.k_n = 2e5;
-    spec.e = 0.9;
-    spec.mu = mu;
-    spec.gamma_t = 20;
-    return spec;
+ContactTable bed_contacts(const SpeciesTable& t, double mu) {
+    return soft(t, "linear_dashpot",
+                "stiffness: 2e5, restitution: 0.9, tangential_damping: 20, friction: " +
+                    std::to_string(mu));
 }
 
 // 100 smooth grains (the paper's law with mu = 0, e = 0.9) dropped on a static floor settle: the
@@ -632,7 +613,7 @@ DemContactSpec bed_contact(double mu) {
 // free spins about vertical contact normals, which no force of these laws resists.)
 TEST(DemEngine, BedSettlesOnAStaticFloor) {
     const SpeciesTable t = table_of({make_species("a", 1, 1, 0.4, 100)});
-    const DemContactTable contacts(t, DemLaw::linear_dashpot, bed_contact(0.0));
+    const ContactTable contacts = bed_contacts(t, 0.0);
     DemSettings settings;
     settings.gravity = {0, 0, -1};
     Box<3> box = make_box<3>(5, true, 40);
@@ -671,14 +652,14 @@ TEST(DemEngine, BedSettlesOnAStaticFloor) {
 // about 10 %), and no grain ever sinks into the floor by more than 2 % of d.
 TEST(DemEngine, VibratedBedReachesASteadyGranularTemperature) {
     const SpeciesTable t = table_of({make_species("a", 1, 1, 0.4, 100)});
-    const DemContactTable contacts(t, DemLaw::linear_dashpot, bed_contact(0.4));
+    const ContactTable contacts = bed_contacts(t, 0.4);
     DemSettings settings;
     settings.gravity = {0, 0, -1};
     const double A = 1, omega = 3, period = 2 * kPi / omega;
     DemEngine<3> e(make_box<3>(5, true, 80), t, contacts, vibrated_bed_lattice(100, 5, 3.0, 9),
                    settings);
     e.remove_wall(2, 1);
-    e.set_wall(2, 0, WallMotion::sinusoid(A, omega));
+    e.set_wall(2, 0, WallMotion::sinusoid(A, omega), 0);
     e.advance(8 * period);
     const auto& ps = e.particles();
     double sum[2] = {0, 0};

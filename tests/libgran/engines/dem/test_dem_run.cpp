@@ -25,19 +25,22 @@ double error(const YAML::Node& n) {
 }
 
 // The 3D canonical bed of Bhateja et al. 2016 (5d x 5d periodic, 100 grains, A = d, sinusoid,
-// e_p = e_w = 0.9), with `extra` appended to the engine map and a tall box (open top in effect).
-std::string bed3d(double frequency, const std::string& engine_extra, double gravity, double height,
-                  const std::string& drivers_extra, double measurement) {
+// e_p = e_w = 0.9), with `extra` appended to the contact law's keys and a tall box (open top in
+// effect, the top of the box elastic).
+std::string bed3d(double frequency, const std::string& contact_extra, double gravity,
+                  double height, const std::string& drivers_extra, double measurement) {
     return fmt::format(R"(
 dimension: 3
 seed: 4
 gravity: [0, 0, {g}]
 box: {{lengths: [5, 5, {h}], periodic: [true, true, false]}}
 species: [{{name: grain, count: 100, mass: 1, diameter: 1, inertia_factor: 0.4}}]
-interactions: {{alpha: 0.9}}
-engine: {{type: dem, stiffness: 2e5{extra}}}
+interactions:
+  {{law: linear_dashpot, restitution: 0.9, stiffness: 2e5{extra},
+   pairs: [{{between: [grain, box], restitution: 1}}]}}
+engine: {{type: dem}}
 drivers:
-  - {{type: vibrating_wall, axis: z, waveform: sinusoid, amplitude: 1, frequency: {f}, restitution: 0.9}}
+  - {{type: vibrating_wall, axis: z, waveform: sinusoid, amplitude: 1, frequency: {f}}}
 {drivers}
 observables:
   - {{type: local_temperature}}
@@ -46,7 +49,7 @@ observables:
 run: {{unit: time, equilibration: {eq}, measurement: {m}, sample_interval: {si}}}
 )",
                        fmt::arg("g", gravity), fmt::arg("h", height),
-                       fmt::arg("extra", engine_extra), fmt::arg("f", frequency),
+                       fmt::arg("extra", contact_extra), fmt::arg("f", frequency),
                        fmt::arg("drivers", drivers_extra), fmt::arg("eq", 20 / frequency),
                        fmt::arg("m", measurement / frequency),
                        // incommensurate with the period: every drive phase is sampled
@@ -62,9 +65,11 @@ TEST(DemRun, EngineKeyRunsTheSceneOnTheDemEngineAndReportsIsolatedCollisions) {
     // Restitution achieved on the engine itself at this dt: within 0.5% of the request.
     const YAML::Node iso = perf["isolated_collisions"];
     ASSERT_TRUE(iso["grain-grain"]);
-    ASSERT_TRUE(iso["grain-wall_e0.9"]);  // the vibrating base
-    ASSERT_TRUE(iso["grain-wall_e1"]);    // the static elastic top of the box
-    for (const char* k : {"grain-grain", "grain-wall_e0.9", "grain-wall_e1"}) {
+    ASSERT_TRUE(iso["grain-vibrating_wall"]);  // the vibrating base
+    ASSERT_TRUE(iso["grain-box"]);             // the static elastic top of the box
+    EXPECT_EQ(iso["grain-vibrating_wall"]["requested_restitution"].as<double>(), 0.9);
+    EXPECT_EQ(iso["grain-box"]["requested_restitution"].as<double>(), 1.0);
+    for (const char* k : {"grain-grain", "grain-vibrating_wall", "grain-box"}) {
         const double e = iso[k]["restitution"].as<double>();
         const double want = iso[k]["requested_restitution"].as<double>();
         EXPECT_NEAR(e / want, 1.0, 0.005) << k;
@@ -110,8 +115,7 @@ TEST(DemRun, WithoutGravityUnderALidTzGrowsAsTheSquareOfThePeakVelocity) {
     for (double f : {0.25, 0.5, 1.0}) {
         // Box height: the base sweeps [0, 2A], the lid 10d above the base's mean position.
         const YAML::Node s = testing::run_yaml(
-            bed3d(f, "", 0, 11, "  - {type: static_wall, axis: z, side: upper, restitution: 0.9}",
-                  100),
+            bed3d(f, "", 0, 11, "  - {type: static_wall, axis: z, side: upper}", 100),
             fmt::format("lid{}", f));
         const YAML::Node lt = s["observables"]["local_temperature"];
         vp.push_back(lt["peak_velocity"].as<double>());
@@ -138,10 +142,12 @@ box: {{lengths: [10, 60], periodic: [true, false]}}
 species:
   - {{name: light, count: 20, mass: 1, diameter: 1}}
   - {{name: heavy, count: 20, mass: 2, diameter: 1}}
-interactions: {{alpha: 0.9}}
-engine: {{type: {}, stiffness: 2e5}}
+interactions:
+  {{law: linear_dashpot, restitution: 0.9, stiffness: 2e5,
+   pairs: [{{between: [light, box], restitution: 1}}, {{between: [heavy, box], restitution: 1}}]}}
+engine: {{type: {}}}
 drivers:
-  - {{type: vibrating_wall, axis: y, waveform: sinusoid, amplitude: 1, frequency: 0.7, restitution: 0.9}}
+  - {{type: vibrating_wall, axis: y, waveform: sinusoid, amplitude: 1, frequency: 0.7}}
 observables:
   - {{type: temperatures, reference_species: light}}
   - {{type: local_temperature}}
@@ -176,8 +182,8 @@ dimension: 2
 seed: 3
 box: {{lengths: [20, 20], periodic: [true, false]}}
 species: [{{name: a, count: 100}}]
-interactions: {{alpha: 0.9}}
-engine: {{type: {}, stiffness: 2e5}}
+interactions: {{law: linear_dashpot, restitution: 0.9, stiffness: 2e5, walls: {{restitution: 1}}}}
+engine: {{type: {}}}
 drivers: [{{type: vibrating_wall, axis: y, side: both, waveform: sawtooth, amplitude: 0.2, frequency: 2.5}}]
 observables: [{{type: temperatures}}]
 run: {{unit: time, equilibration: 50, measurement: 600, sample_interval: 0.5}}
@@ -204,28 +210,30 @@ species: [{name: a, count: 20}]
     struct Case {
         std::string body, location, needle;
     };
+    const std::string soft = "interactions: {law: linear_dashpot, stiffness: 1e4}\n";
     const std::vector<Case> cases{
-        {"engine: {type: dem, stiffness: 1e4}\ndrivers: [{type: thermal_wall, axis: y, "
-         "temperature: 1}]\nrun: {unit: time, measurement: 1}\n",
-         "bad.yaml:7:", "not available on the dem engine"},
-        {"engine: {type: dem, stiffness: 1e4}\ndrivers: [{type: vibrating_wall, axis: y, "
-         "waveform: sawtooth, velocity: 1}]\nrun: {unit: time, measurement: 1}\n",
+        {soft + "engine: {type: dem}\ndrivers: [{type: thermal_wall, axis: y, temperature: 1}]\n"
+                "run: {unit: time, measurement: 1}\n",
+         "bad.yaml:8:", "not available on the dem engine"},
+        {soft + "engine: {type: dem}\ndrivers: [{type: vibrating_wall, axis: y, waveform: "
+                "sawtooth, velocity: 1}]\nrun: {unit: time, measurement: 1}\n",
          "waveform", "no wall position"},
-        {"engine: {type: dem, stiffness: 1e4}\nobservables: [{type: restitution_statistics}]\n"
-         "run: {unit: time, measurement: 1}\n",
-         "bad.yaml:7:", "binary collision records"},
-        {"engine: {type: dem, stiffness: 1e4, dt_fraction: 0.3}\nrun: {unit: time, measurement: "
-         "1}\n",
+        {soft + "engine: {type: dem}\nobservables: [{type: restitution_statistics}]\n"
+                "run: {unit: time, measurement: 1}\n",
+         "bad.yaml:8:", "binary collision records"},
+        {soft + "engine: {type: dem, dt_fraction: 0.3}\nrun: {unit: time, measurement: 1}\n",
          "engine.dt_fraction", "5 steps per contact"},
-        {"engine: {type: dem, stiffness: 1e4, dt: 0.01}\nrun: {unit: time, measurement: 1}\n",
-         "engine", "exceeds t_c / 5"},
-        {"engine: {type: dem}\nrun: {unit: time, measurement: 1}\n", "engine.stiffness",
-         "`contact_time`"},
-        {"engine: {type: dem, stiffness: 1e4}\nrun: {measurement: 1}\n", "run.unit",
-         "schedules by time"},
-        {"interactions: {alpha: 0.9, beta: 0.5}\nengine: {type: dem, stiffness: 1e4}\nrun: {unit: "
-         "time, measurement: 1}\n",
-         "engine.type", "engine.friction"},
+        {soft + "engine: {type: dem, dt: 0.01}\nrun: {unit: time, measurement: 1}\n", "engine",
+         "exceeds t_c / 5"},
+        {"interactions: {law: linear_dashpot}\nengine: {type: dem}\nrun: {unit: time, "
+         "measurement: 1}\n",
+         "interactions.stiffness", "`contact_time`"},
+        {soft + "engine: {type: dem}\nrun: {measurement: 1}\n", "run.unit", "schedules by time"},
+        {"interactions: {alpha: 0.9, beta: 0.5}\nengine: {type: dem}\nrun: {unit: time, "
+         "measurement: 1}\n",
+         "interactions", "linear_dashpot"},
+        {"engine: {type: dem, stiffness: 1e4}\nrun: {unit: time, measurement: 1}\n",
+         "engine.stiffness", "interactions: {law: linear_dashpot, stiffness:"},
     };
     for (const auto& c : cases) {
         try {

@@ -1,18 +1,19 @@
 // Event-driven engine: conservation laws and event bookkeeping on small systems.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/placement.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
 #include "tests/support/periodic_cube.hpp"
 
 namespace gran {
 namespace {
 
-SpeciesTable make_table(int ns, double alpha, double beta, double mass_ratio, std::size_t n_each,
-                        double q) {
+SpeciesTable make_table(int ns, double mass_ratio, std::size_t n_each, double q) {
     SpeciesTable t;
     for (int s = 0; s < ns; ++s) {
         Species sp;
@@ -23,11 +24,12 @@ SpeciesTable make_table(int ns, double alpha, double beta, double mass_ratio, st
         sp.count = n_each;
         t.species.push_back(sp);
     }
-    PairCoefficients c;
-    c.alpha = alpha;
-    c.beta = beta;
-    t.pairs.assign(std::size_t(ns * ns), c);
     return t;
+}
+
+// Constant restitution alpha, beta for every contact.
+ContactTable contacts(const SpeciesTable& t, double alpha, double beta) {
+    return testing::contacts_of(t, fmt::format("{{alpha: {}, beta: {}}}", alpha, beta));
 }
 
 using testing::cube_for;
@@ -42,14 +44,16 @@ using testing::momentum;
 template <int D>
 void check_elastic_conservation(int ns, bool periodic, std::uint64_t collisions, double beta,
                                 double q) {
-    const auto table = make_table(ns, 1.0, beta, 3.0, ns == 1 ? 400 : 200, q);
+    const auto table = make_table(ns, 3.0, ns == 1 ? 400 : 200, q);
+    const auto c = contacts(table, 1.0, beta);
     const auto box = cube_for<D>(table, 0.2, periodic);
     Rng rng = make_rng(7, Stream::Placement);
     auto p = place_random<D>(box, table, rng);
+    testing::allocate_rotation<D>(p, c);
     maxwellian_velocities<D>(p, table, 1.0, rng);
     const double e0 = kinetic_energy<D>(p, table);
     const Vec<D> p0 = momentum<D>(p, table);
-    EventDrivenEngine<D> engine(box, table, p, EngineSettings{});
+    EventDrivenEngine<D> engine(box, table, c, p, EngineSettings{});
     engine.advance(kInf, collisions);
     engine.synchronize();
     const double e1 = kinetic_energy<D>(engine.particles(), table);
@@ -97,14 +101,13 @@ TEST(EventDrivenEngine, SizeRatioFourDenseMixtureConservesEnergyAndNeverOverlaps
     SpeciesTable t;
     t.species.push_back(Species{"big", 4.0, 1.0, 0.4, 100});
     t.species.push_back(Species{"small", 0.1, 0.25, 0.4, 3000});
-    PairCoefficients c;
-    t.pairs.assign(4, c);
+    const auto c = testing::contacts_of(t);
     const auto box = cube_for<3>(t, 0.35, true);
     Rng rng = make_rng(8, Stream::Placement);
     auto p = place_random<3>(box, t, rng);
     maxwellian_velocities<3>(p, t, 1.0, rng);
     const double e0 = kinetic_energy<3>(p, t);
-    EventDrivenEngine<3> engine(box, t, p, EngineSettings{});
+    EventDrivenEngine<3> engine(box, t, c, p, EngineSettings{});
     engine.advance(kInf, 300000);
     engine.synchronize();
     EXPECT_NEAR(kinetic_energy<3>(engine.particles(), t) / e0, 1.0, 1e-10);
@@ -148,14 +151,15 @@ TEST(PairCollisionTime, MissingPairNeverCollides) {
 // A very inelastic dense system undergoes inelastic collapse without a guard; the TC model keeps
 // the run going and counts how often it intervened.
 TEST(EventDrivenEngine, CollapseGuardKeepsVeryInelasticDenseGasRunning) {
-    const auto table = make_table(1, 0.1, -1, 1.0, 1000, 0.5);
+    const auto table = make_table(1, 1.0, 1000, 0.5);
+    const auto c = contacts(table, 0.1, -1);
     const auto box = cube_for<2>(table, 0.4, true);
     Rng rng = make_rng(3, Stream::Placement);
     auto p = place_lattice<2>(box, table, rng);
     maxwellian_velocities<2>(p, table, 1.0, rng);
     EngineSettings settings;
     settings.tc = 1e-4;
-    EventDrivenEngine<2> engine(box, table, p, settings);
+    EventDrivenEngine<2> engine(box, table, c, p, settings);
     const auto stop = engine.advance(kInf, 300000);
     EXPECT_EQ(stop, EventDrivenEngine<2>::Stop::CollisionLimit);
     EXPECT_GT(engine.counters().tc_collisions, 0u);
@@ -164,12 +168,14 @@ TEST(EventDrivenEngine, CollapseGuardKeepsVeryInelasticDenseGasRunning) {
 
 // Events are never scheduled in the past: the engine clock never decreases.
 TEST(EventDrivenEngine, ClockIsMonotonicAcrossEvents) {
-    const auto table = make_table(2, 0.7, 0.3, 2.0, 200, 0.5);
+    const auto table = make_table(2, 2.0, 200, 0.5);
+    const auto c = contacts(table, 0.7, 0.3);
     const auto box = cube_for<2>(table, 0.3, true);
     Rng rng = make_rng(4, Stream::Placement);
     auto p = place_random<2>(box, table, rng);
+    testing::allocate_rotation<2>(p, c);
     maxwellian_velocities<2>(p, table, 1.0, rng);
-    EventDrivenEngine<2> engine(box, table, p, EngineSettings{});
+    EventDrivenEngine<2> engine(box, table, c, p, EngineSettings{});
     double last = engine.now();
     for (int k = 1; k <= 2000; ++k) {
         engine.advance(kInf, std::uint64_t(k) * 10);

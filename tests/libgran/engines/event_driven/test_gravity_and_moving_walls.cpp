@@ -2,6 +2,7 @@
 // particle, every piston hit found (against a brute-force time-stepping reference), resting
 // particles never stall the run, impact-speed dependent restitution used per collision, and many
 // particles under gravity conserve energy with elastic walls.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,22 +12,29 @@
 #include "libgran/core/wall_motion.hpp"
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/placement.hpp"
-#include "species/wall_rules.hpp"
+#include "tests/support/contacts.hpp"
 
 namespace gran {
 namespace {
 
-SpeciesTable one_species(std::size_t count, double alpha = 1.0) {
+SpeciesTable one_species(std::size_t count) {
     SpeciesTable t;
     Species s;
     s.name = "a";
     s.count = count;
     t.species.push_back(s);
-    PairCoefficients c;
-    c.alpha = alpha;
-    c.restitution = constant_impact_restitution(alpha);
-    t.pairs.assign(1, c);
     return t;
+}
+
+// Constant restitution `alpha` between grains, `floor` against the wall partner `floor` (index 1;
+// the box's own walls, partner 0, are elastic).
+constexpr std::size_t kFloor = 1;
+ContactTable contacts(const SpeciesTable& t, double alpha = 1.0, double floor = 1.0) {
+    return testing::contacts_of(
+        t,
+        fmt::format("{{alpha: {}, walls: {{alpha: 1}}, pairs: [{{between: [a, floor], alpha: {}}}]}}",
+                    alpha, floor),
+        2, {"box", "floor"});
 }
 
 Box<2> column(double width, double height) {
@@ -54,11 +62,10 @@ EngineSettings with_gravity(double g) {
 
 TEST(Gravity, ElasticBounceOnAStaticFloorKeepsItsEnergyOverHundredThousandBounces) {
     const double g = 9.81;
-    EventDrivenEngine<2> e(column(10, 50), one_species(1), single(5.0, 3.7, 0.3, 0.0),
+    const auto t = one_species(1);
+    EventDrivenEngine<2> e(column(10, 50), t, contacts(t), single(5.0, 3.7, 0.3, 0.0),
                            with_gravity(g));
-    Rng rng = make_rng(1, Stream::Driver);
-    WallParams elastic;
-    e.set_wall(1, 0, &impact_wall_rule<2>, elastic, &rng);
+    e.set_wall(1, 0, WallMotion::fixed(), kFloor);
     auto energy = [&] {
         const auto& p = e.particles();
         return 0.5 * p.v[0].squaredNorm() + g * p.r[0][1];
@@ -75,12 +82,10 @@ TEST(Gravity, ElasticBounceOnAStaticFloorKeepsItsEnergyOverHundredThousandBounce
 
 TEST(Gravity, InelasticParticleComesToRestOnTheFloorWithoutStallingTheRun) {
     const double g = 9.81;
-    EventDrivenEngine<2> e(column(10, 50), one_species(1), single(5.0, 3.0, 0.0, 0.0),
+    const auto t = one_species(1);
+    EventDrivenEngine<2> e(column(10, 50), t, contacts(t, 1.0, 0.5), single(5.0, 3.0, 0.0, 0.0),
                            with_gravity(g));
-    Rng rng = make_rng(1, Stream::Driver);
-    WallParams lossy;
-    lossy.restitution = constant_impact_restitution(0.5);
-    e.set_wall(1, 0, &impact_wall_rule<2>, lossy, &rng);
+    e.set_wall(1, 0, WallMotion::fixed(), kFloor);
     // The bounces form a geometric series (inelastic collapse at the wall, finite time); the
     // rebound is then held at g tc, micro-bounces of height g tc^2 / 2: time keeps advancing.
     const auto stop = e.advance(10.0, ~0ull);
@@ -128,10 +133,10 @@ std::size_t total_hits = 0;
 
 void expect_every_hit_found(const WallMotion& motion, double g, double y0, double vy0) {
     const double L = 1e5;  // the lid is never reached
-    EventDrivenEngine<2> e(column(10, L), one_species(1), single(5.0, y0, 0.0, vy0),
+    const auto t = one_species(1);
+    EventDrivenEngine<2> e(column(10, L), t, contacts(t), single(5.0, y0, 0.0, vy0),
                            with_gravity(g));
-    Rng rng = make_rng(1, Stream::Driver);
-    e.set_wall(1, 0, &impact_wall_rule<2>, WallParams{}, &rng, motion);
+    e.set_wall(1, 0, motion, kFloor);
     const Reference ref{motion, motion.reach(), g};
     const double period = 2 * std::numbers::pi / motion.omega;
     const auto hits = ref.hits(y0, vy0, 20 * period, period * 1e-5);
@@ -180,7 +185,7 @@ TEST(Gravity, ElasticDisksUnderGravityBetweenElasticWallsConserveEnergy) {
     Particles<2> p = place_random<2>(box, t, rng);
     Rng vr = make_rng(7, Stream::Velocities);
     for (auto& v : p.v) v = Vec<2>(gaussian(vr), gaussian(vr));
-    EventDrivenEngine<2> e(box, t, std::move(p), with_gravity(g));
+    EventDrivenEngine<2> e(box, t, contacts(t), std::move(p), with_gravity(g));
     auto energy = [&] {
         e.synchronize();
         double s = 0;
@@ -197,8 +202,8 @@ TEST(Gravity, ElasticDisksUnderGravityBetweenElasticWallsConserveEnergy) {
 
 TEST(ImpactRestitution, EngineAppliesMcNamaraFalconLawAtTheImpactSpeed) {
     // Head-on pair at relative speed 4 v0: r = r0 (4)^(-1/4) (McNamara & Falcon 2005, Eq. 1).
-    SpeciesTable t = one_species(2);
-    t.pairs[0].restitution = mcnamara_falcon_impact_restitution(0.9, 0.5);
+    const SpeciesTable t = one_species(2);
+    const ContactTable c = testing::contacts_of(t, "{law: mcnamara_falcon, r0: 0.9, v0: 0.5}", 2);
     Box<2> box;
     box.length = Vec<2>(100, 100);
     box.periodic = {true, true};
@@ -210,7 +215,7 @@ TEST(ImpactRestitution, EngineAppliesMcNamaraFalconLawAtTheImpactSpeed) {
     p.v[1] = Vec<2>(-1.0, 0);
     p.t = {0, 0};
     p.species = {0, 0};
-    EventDrivenEngine<2> e(box, t, std::move(p), EngineSettings{});
+    EventDrivenEngine<2> e(box, t, c, std::move(p), EngineSettings{});
     e.advance(1e9, 1);
     const double r = 0.9 * std::pow(4.0, -0.25);
     EXPECT_NEAR(std::abs(e.particles().v[0][0] - e.particles().v[1][0]), 2.0 * r, 1e-14);
@@ -226,17 +231,16 @@ TEST(MovingWall, ManyParticlesStayAboveThePistonAcrossTimeOriginShifts) {
     // 300 disks above a two-parabola piston under gravity, advanced in many short steps: the
     // engine moves its time origin every 16 N events; the stop time, the piston phase and every
     // particle position must stay consistent (a stale limit once ran far past the stop time).
-    const SpeciesTable t = one_species(300, 0.9);
+    const SpeciesTable t = one_species(300);
     Box<2> box = column(100, 24);
     Rng rng = make_rng(3, Stream::Placement);
     Box<2> lower = box;
     lower.length[1] = 12;  // start in the lower half, above the piston's sweep
     Particles<2> p = place_random<2>(lower, t, rng);
     for (auto& r : p.r) r[1] += 8;
-    EventDrivenEngine<2> e(box, t, std::move(p), with_gravity(1.0));
-    Rng wr = make_rng(3, Stream::Driver);
+    EventDrivenEngine<2> e(box, t, contacts(t, 0.9), std::move(p), with_gravity(1.0));
     const WallMotion piston = WallMotion::parabolic_piston(6.0, 0.25);
-    e.set_wall(1, 0, &impact_wall_rule<2>, WallParams{}, &wr, piston);
+    e.set_wall(1, 0, piston, kFloor);
     std::uint64_t sorts = 0;
     for (int k = 1; k <= 400; ++k) {
         const double t_stop = 0.1 * k;
