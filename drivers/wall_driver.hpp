@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "libgran/plugins/driver.hpp"
 #include "libgran/core/random.hpp"
+#include "libgran/plugins/driver.hpp"
 #include "species/restitution_params.hpp"
 
 namespace gran {
@@ -89,7 +89,7 @@ class WallDriver : public Driver<D> {
     }
     std::string dem_refusal_key() const override { return refusal_key_; }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& g) const override {
         if (!engine_ && !dem_) return;
         g.attr("wall", what_);
         const auto& hits = engine_ ? engine_->wall_hits() : dem_->wall_hits();
@@ -98,11 +98,9 @@ class WallDriver : public Driver<D> {
             if (side == 0 ? !lower_ : !upper_) continue;
             const std::string name = side == 0 ? "lower" : "upper";
             const auto code = std::size_t(2 * axis_ + side);
-            g.write_scalar("hits_" + name, static_cast<std::int64_t>(hits[code]));
-            summary["hits_" + name] = hits[code];
+            g.value("hits_" + name, hits[code]);
             // Whole run (equilibration included); the wall_pressure observable measures rates.
-            g.write_scalar("impulse_" + name, impulse[code]);
-            g.attr_on("impulse_" + name, "unit", "mass velocity");
+            g.file_only().value("impulse_" + name, impulse[code], "mass velocity");
         }
     }
 

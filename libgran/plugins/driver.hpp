@@ -1,14 +1,12 @@
 #pragma once
 // Energy injection and confinement. A driver may own global events (e.g. thermostat kicks): the run
 // loop stops the engine at next_time(), synchronises all particles, and calls fire().
-#include <yaml-cpp/yaml.h>
-
 #include <string>
 
+#include "libgran/core/registry.hpp"
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/engines/event_driven/engine.hpp"
-#include "libgran/core/h5.hpp"
-#include "libgran/core/registry.hpp"
+#include "libgran/run/result_sink.hpp"
 #include "libgran/scene/scene_info.hpp"
 
 namespace gran {
@@ -37,8 +35,9 @@ class Driver {
     // Called with the engine synchronised at next_time(); must call engine.velocities_changed()
     // if it changed velocities.
     virtual void fire(EventDrivenEngine<D>& /*engine*/) {}
-    // Its own statistics (e.g. injected energy) under /drivers/<name>, and lines for the summary.
-    virtual void write(h5::Group& /*group*/, YAML::Node& /*summary*/) const {}
+    // Its own statistics (e.g. injected energy) under /drivers/<name> and the summary's
+    // drivers.<name> (libgran/run/result_sink.hpp).
+    virtual void write(ResultGroup& /*out*/) const {}
 };
 
 }  // namespace gran
