@@ -16,9 +16,9 @@
 // linearly in time. The correction changes each kick by O(1/N).
 #include <cmath>
 
-#include "libgran/plugins/driver.hpp"
 #include "libgran/core/kinetic_theory.hpp"
 #include "libgran/core/random.hpp"
+#include "libgran/plugins/driver.hpp"
 
 namespace gran {
 namespace {
@@ -62,15 +62,10 @@ class StochasticThermostat final : public Driver<D> {
         next_ += interval_;
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
-        g.write_scalar("kicks", static_cast<std::int64_t>(count_));
-        g.write_scalar("interval", interval_);
-        g.attr_on("interval", "unit", "time");
-        summary["interval"] = interval_;
-        g.write_scalar("injected_energy", injected_);
-        g.attr_on("injected_energy", "unit", "energy");
-        summary["kicks"] = count_;
-        summary["injected_energy"] = injected_;
+    void write(ResultGroup& g) const override {
+        g.value("kicks", count_);
+        g.value("interval", interval_, "time");
+        g.value("injected_energy", injected_, "energy");
     }
 
     // 1/8 of the Enskog mean free time of the mixture at the initial temperature: close enough to

@@ -80,14 +80,13 @@ class VibratingWall final : public WallDriver<D> {
         return 2 * kPi / motion_.omega;
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
-        WallDriver<D>::write(g, summary);
+    void write(ResultGroup& g) const override {
+        WallDriver<D>::write(g);
         g.attr("waveform", waveform_);
-        g.write_scalar("peak_velocity", peak_velocity());
-        summary["peak_velocity"] = peak_velocity();
+        g.value("peak_velocity", peak_velocity());
         if (waveform_ != "sawtooth") {
-            g.write_scalar("frequency", motion_.omega / (2 * kPi));
-            g.write_scalar("amplitude", motion_.amplitude);
+            g.file_only().value("frequency", motion_.omega / (2 * kPi));
+            g.file_only().value("amplitude", motion_.amplitude);
         }
     }
 

@@ -58,7 +58,7 @@ class WallDriver : public Driver<D> {
     }
     void observe(const EngineView<D>& view) override { view_ = &view; }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& g) const override {
         if (!view_) return;
         g.attr("wall", what_);
         const auto& hits = view_->wall_hits();
@@ -67,11 +67,9 @@ class WallDriver : public Driver<D> {
             if (side == 0 ? !lower_ : !upper_) continue;
             const std::string name = side == 0 ? "lower" : "upper";
             const auto code = std::size_t(2 * axis_ + side);
-            g.write_scalar("hits_" + name, static_cast<std::int64_t>(hits[code]));
-            summary["hits_" + name] = hits[code];
+            g.value("hits_" + name, hits[code]);
             // Whole run (equilibration included); the wall_pressure observable measures rates.
-            g.write_scalar("impulse_" + name, impulse[code]);
-            g.attr_on("impulse_" + name, "unit", "mass velocity");
+            g.file_only().value("impulse_" + name, impulse[code], "mass velocity");
         }
     }
 

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <vector>
 
-#include "observables/blocked_histogram.hpp"
 #include "libgran/plugins/observable.hpp"
+#include "observables/blocked_histogram.hpp"
 
 namespace gran {
 namespace {
@@ -77,31 +77,27 @@ class AngularVelocityPdf final : public Observable<D> {
         }
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& out) const override {
         if (!rotating_) {
-            g.attr("note", "smooth particles (every beta = -1): no angular velocities");
-            summary["note"] = "smooth particles: no angular velocities";
+            out.text("note", "smooth particles (every beta = -1): no angular velocities");
             return;
         }
         if (samples_ == 0) return;
         for (std::size_t s = 0; s < table_.size(); ++s) {
             const std::string name = table_.species[s].name;
+            ResultGroup gs = out.group(name);
             for (int a = 0; a < kComponents; ++a) {
                 const std::string comp = D == 2 ? "z" : component_name(a);
-                h5::Group gc = g.group(name + "/" + comp);
-                per_[s].scaled[std::size_t(a)].write(gc, "scaled_");
-                gc.attr_on("scaled_edges", "unit", "sqrt(T_rot,s/I_s)");
+                ResultGroup gc = gs.group(comp);
+                per_[s].scaled[std::size_t(a)].write(gc, "scaled_", 1.0, "sqrt(T_rot,s/I_s)");
             }
             if (per_[s].c2.size() < 2) continue;
-            YAML::Node ks;
-            h5::Group gs = g.group(name);
             const Estimate k =
                 jackknife({per_[s].c4.values(), per_[s].c2.values()},
                           [](std::span<const double> m) { return m[0] / (m[1] * m[1]); });
-            write_estimate(gs, "kurtosis", k, "", ks);
-            summary[name] = ks;
+            gs.estimate("kurtosis", k, "");
         }
-        g.attr("blocks", static_cast<std::int64_t>(nblocks_));
+        out.attr("blocks", static_cast<std::int64_t>(nblocks_));
     }
 
   private:

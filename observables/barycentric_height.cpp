@@ -44,15 +44,15 @@ class BarycentricHeight final : public Observable<D> {
         h_.push(mz / m - base_);
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& out) const override {
         if (h_.size() == 0) return;
-        g.attr("axis", std::string(component_name(axis_)));
-        g.write_scalar("base_position", base_);
+        out.attr("axis", std::string(component_name(axis_)));
+        out.file_only().value("base_position", base_);
         const Estimate h = h_.estimate();
-        write_estimate(g, "h_cm", h, "length", summary);
+        out.estimate("h_cm", h, "length");
         if (!std::isnan(rest_)) {
-            g.write_scalar("rest_height", rest_);
-            write_estimate(g, "delta_h_cm", h.affine(1, -rest_), "length", summary);
+            out.file_only().value("rest_height", rest_);
+            out.estimate("delta_h_cm", h.affine(1, -rest_), "length");
         }
     }
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "libgran/core/h5.hpp"
+#include "libgran/run/result_sink.hpp"
 
 namespace gran {
 
@@ -15,12 +15,13 @@ using Histogram =
     decltype(boost::histogram::make_histogram(boost::histogram::axis::regular<>(1, 0.0, 1.0)));
 
 struct BlockedHistogram {
-    // Writes <prefix>edges, <prefix>density, <prefix>error; edges and density may be rescaled
-    // (a change of variable x -> x / scale) for rescaled distributions.
     std::vector<Histogram> blocks;
     std::vector<double> entries;  // samples in range+out of range per block
 
-    void write(h5::Group& g, const std::string& prefix, double scale = 1.0) const {
+    // Writes <prefix>edges (in `edges_unit`), <prefix>density, <prefix>error; edges and density
+    // may be rescaled (a change of variable x -> x / scale) for rescaled distributions.
+    void write(ResultGroup& g, const std::string& prefix, double scale = 1.0,
+               const std::string& edges_unit = "") const {
         const auto& axis = blocks.front().axis();
         const auto nb = static_cast<std::size_t>(axis.size());
         std::vector<double> edges(nb + 1), density(nb, 0), error(nb, 0);
@@ -51,9 +52,7 @@ struct BlockedHistogram {
         for (auto& e : edges) e /= scale;
         for (auto& d : density) d *= scale;
         for (auto& e : error) e *= scale;
-        g.write(prefix + "edges", edges);
-        g.write(prefix + "density", density);
-        g.write(prefix + "error", error);
+        g.histogram(prefix, edges, density, error, edges_unit);
     }
 };
 

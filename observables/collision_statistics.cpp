@@ -39,35 +39,30 @@ class CollisionStatistics final : public Observable<D> {
         walls_ = ctx.engine.total_wall_hits();
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& out) const override {
         const std::size_t ns = table_.size();
-        g.write_scalar("collisions", static_cast<std::int64_t>(total_));
-        g.write_scalar("wall_hits", static_cast<std::int64_t>(walls_));
-        summary["collisions"] = total_;
+        out.value("collisions", total_);
+        out.file_only().value("wall_hits", walls_);
         if (dt_.size() < 2) return;
         const double scale = 2.0 / double(n_);
         const Estimate omega = ratio_of_means(dtotal_.values(), dt_.values()).affine(scale);
-        write_estimate(g, "frequency_per_particle", omega, "1/time", summary);
+        out.estimate("frequency_per_particle", omega, "1/time");
         if (totals_pairs_.size() != ns * ns)
             return;  // the dem engine counts contacts in total only
         for (std::size_t a = 0; a < ns; ++a) {
             for (std::size_t b = a; b < ns; ++b) {
                 const auto& inc = pair_increments_[a * ns + b];
                 const std::string pair = table_.species[a].name + "-" + table_.species[b].name;
-                h5::Group gp = g.group("pairs/" + pair);
-                YAML::Node ps;
-                gp.write_scalar("collisions", static_cast<std::int64_t>(totals_pairs_[a * ns + b]));
+                ResultGroup gp = out.group("pairs").group(pair);
+                gp.file_only().value("collisions", totals_pairs_[a * ns + b]);
                 const Estimate r = ratio_of_means(inc.values(), dt_.values());
                 // Frequency seen by one particle of a (colliding with b), and by one of b.
                 const double fa = (a == b ? 2.0 : 1.0) / double(table_.species[a].count);
-                write_estimate(gp, "frequency_" + table_.species[a].name, r.affine(fa), "1/time",
-                               ps);
+                gp.estimate("frequency_" + table_.species[a].name, r.affine(fa), "1/time");
                 if (a != b) {
                     const double fb = 1.0 / double(table_.species[b].count);
-                    write_estimate(gp, "frequency_" + table_.species[b].name, r.affine(fb),
-                                   "1/time", ps);
+                    gp.estimate("frequency_" + table_.species[b].name, r.affine(fb), "1/time");
                 }
-                summary["pairs"][pair] = ps;
             }
         }
     }

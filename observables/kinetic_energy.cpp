@@ -23,15 +23,13 @@ class KineticEnergy final : public Observable<D> {
         if (ctx.measuring) measured_.push(per);
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
-        g.write("time", time_);
-        g.attr_on("time", "unit", "time");
-        g.write("energy_per_particle", energy_);
-        g.attr_on("energy_per_particle", "unit", "energy");
-        g.write("collisions_per_particle", cpp_);
-        g.write("measuring", phase_);
+    void write(ResultGroup& out) const override {
+        out.array("time", time_, "time");
+        out.array("energy_per_particle", energy_, "energy");
+        out.array("collisions_per_particle", cpp_);
+        out.array("measuring", phase_);
         if (measured_.size() > 0)
-            write_estimate(g, "mean_energy_per_particle", measured_.estimate(), "energy", summary);
+            out.estimate("mean_energy_per_particle", measured_.estimate(), "energy");
     }
 
   private:

@@ -125,18 +125,18 @@ class LocalTemperature final : public Observable<D> {
         }
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& g) const override {
         if (samples_ == 0) return;
         g.attr("axis", std::string(component_name(axis_)));
         g.attr("convention",
                "T_a = m <c_a^2> / 2 (Bhateja et al. 2016, Eq. 5), c = v - u(z, drive phase)");
-        g.write_scalar("bin_width", width_);
-        g.write_scalar("phase_bins", static_cast<std::int64_t>(phases_));
-        g.write_scalar("base_position", base_);
+        ResultGroup settings = g.file_only();
+        settings.value("bin_width", width_);
+        settings.value("phase_bins", phases_);
+        settings.value("base_position", base_);
         std::vector<double> z(slabs_);
         for (std::size_t j = 0; j < slabs_; ++j) z[j] = (double(j) + 0.5) * width_ - base_;
-        g.write("z", z);
-        g.attr_on("z", "unit", "length");
+        g.array("z", z, "length");
 
         // Each estimate is a function of the sums with some blocks left out (jackknife).
         const Totals all = totals(nblocks_);
@@ -172,7 +172,7 @@ class LocalTemperature final : public Observable<D> {
         for (std::size_t j = lo; j <= hi && j < slabs_; ++j) {
             if (all.count[j] > 0) bed.push_back(j);
         }
-        g.write_scalar("bed_slabs", static_cast<std::int64_t>(bed.size()));
+        settings.value("bed_slabs", bed.size());
 
         const double slab_volume = cross_section_ * width_;
         std::vector<double> number(slabs_), phi(slabs_), phi_err(slabs_);
@@ -183,12 +183,10 @@ class LocalTemperature final : public Observable<D> {
             phi_err[j] = e.error;
             number[j] = all.count[j] / double(samples_);
         }
-        g.write("phi", phi);
-        g.write("phi_error", phi_err);
-        g.write("grains_per_slab", number);
+        g.profile("phi", phi, phi_err);
+        g.array("grains_per_slab", number);
 
         const double scale = mass_ * peak_velocity_ * peak_velocity_;
-        YAML::Node& s = summary;
         for (int a = 0; a < D; ++a) {
             const std::string c = component_name(a);
             std::vector<double> val(slabs_), err(slabs_);
@@ -197,27 +195,23 @@ class LocalTemperature final : public Observable<D> {
                 val[j] = e.value;
                 err[j] = e.error;
             }
-            g.write("T_" + c + "_profile", val);
-            g.write("T_" + c + "_profile_error", err);
-            g.attr_on("T_" + c + "_profile", "unit", "energy");
+            g.profile("T_" + c + "_profile", val, err, "energy");
             for (std::size_t j = 0; j < slabs_; ++j) {
                 const Estimate e = jack([&](const Totals& t) { return t.plain_local(j, a); });
                 val[j] = e.value;
                 err[j] = e.error;
             }
-            g.write("T_" + c + "_plain_profile", val);
-            g.write("T_" + c + "_plain_profile_error", err);
-            g.attr_on("T_" + c + "_plain_profile", "unit", "energy");
+            g.profile("T_" + c + "_plain_profile", val, err, "energy");
             const Estimate tp = jack([&](const Totals& t) { return t.particle_average(a); });
             const Estimate tv = jack([&](const Totals& t) { return t.volume_average(bed, a); });
             const Estimate tb = jack([&](const Totals& t) { return t.plain(a); });
-            write_estimate(g, "T_" + c, tp, "energy", s);
-            write_estimate(g, "T_" + c + "_plain", tb, "energy", s);
-            write_estimate(g, "T_" + c + "_volume", tv, "energy", s);
+            g.estimate("T_" + c, tp, "energy");
+            g.estimate("T_" + c + "_plain", tb, "energy");
+            g.estimate("T_" + c + "_volume", tv, "energy");
             if (scale > 0) {
-                write_estimate(g, "T_" + c + "_scaled", tp.affine(1 / scale), "", s);
-                write_estimate(g, "T_" + c + "_volume_scaled", tv.affine(1 / scale), "", s);
-                write_estimate(g, "T_" + c + "_plain_scaled", tb.affine(1 / scale), "", s);
+                g.estimate("T_" + c + "_scaled", tp.affine(1 / scale), "");
+                g.estimate("T_" + c + "_volume_scaled", tv.affine(1 / scale), "");
+                g.estimate("T_" + c + "_plain_scaled", tb.affine(1 / scale), "");
             }
         }
         // Total T = (T_x + ... ) / d_f with jackknife over the same blocks.
@@ -231,18 +225,13 @@ class LocalTemperature final : public Observable<D> {
             for (int a = 0; a < D; ++a) x += t.volume_average(bed, a) / D;
             return x;
         });
-        write_estimate(g, "T", tt, "energy", s);
-        write_estimate(g, "T_volume", ttv, "energy", s);
+        g.estimate("T", tt, "energy");
+        g.estimate("T_volume", ttv, "energy");
         if (scale > 0) {
-            write_estimate(g, "T_scaled", tt.affine(1 / scale), "", s);
-            write_estimate(g, "T_volume_scaled", ttv.affine(1 / scale), "", s);
-            g.write_scalar("peak_velocity", peak_velocity_);
-            s["peak_velocity"] = peak_velocity_;
-            if (g_ > 0) {
-                const double w = peak_velocity_ * peak_velocity_ / (diameter_ * g_);
-                g.write_scalar("W", w);
-                s["W"] = w;
-            }
+            g.estimate("T_scaled", tt.affine(1 / scale), "");
+            g.estimate("T_volume_scaled", ttv.affine(1 / scale), "");
+            g.value("peak_velocity", peak_velocity_);
+            if (g_ > 0) g.value("W", peak_velocity_ * peak_velocity_ / (diameter_ * g_));
         }
     }
 

@@ -112,14 +112,13 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         }
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& g) const override {
         if (samples_ == 0) return;
         const std::size_t ns = table_.size();
         std::vector<double> centres(bins_);
         for (std::size_t b = 0; b < bins_; ++b)
             centres[b] = (double(b) + 0.5) * length_ / double(bins_);
-        g.write("position", centres);
-        g.attr_on("position", "unit", "length");
+        g.array("position", centres, "length");
         g.attr("axis", std::string(component_name(axis_)));
         g.attr("middle_window", window_);
         const double slab_volume = cross_section_ * length_ / double(bins_);
@@ -134,11 +133,8 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
                 val[b] = e.value;
                 err[b] = e.error;
             }
-            g.write(name, val);
-            g.write(name + "_error", err);
-            if (!unit.empty()) g.attr_on(name, "unit", unit);
-            const Estimate m = jack(bins_, f, middle_volume);
-            write_estimate(g, "middle/" + name, m, unit, summary);
+            g.profile(name, val, err, unit);
+            g.estimate("middle/" + name, jack(bins_, f, middle_volume), unit);
         };
         for (std::size_t s = 0; s < ns; ++s) {
             const std::string sn = table_.species[s].name;

@@ -20,7 +20,7 @@ using Logarithmic =
     decltype(bh::make_histogram(bh::axis::regular<double, bh::axis::transform::log>(1, 1.0, 2.0)));
 
 template <class H>
-void write_histogram(h5::Group& g, const std::string& name, const H& h, double total) {
+void write_histogram(ResultGroup& g, const std::string& name, const H& h, double total) {
     const auto& axis = h.axis();
     const auto nb = static_cast<std::size_t>(axis.size());
     std::vector<double> edges(nb + 1), density(nb), error(nb);
@@ -32,9 +32,7 @@ void write_histogram(h5::Group& g, const std::string& name, const H& h, double t
         error[k] = total > 0 ? std::sqrt(c) / (total * w)
                              : 0.0;  // counting error (collisions are nearly independent)
     }
-    g.write(name + "/edges", edges);
-    g.write(name + "/density", density);
-    g.write(name + "/error", error);
+    g.histogram(name + "/", edges, density, error);
 }
 
 template <int D>
@@ -94,9 +92,9 @@ class RestitutionStatistics final : public Observable<D>, public CollisionSink<D
         temperature_ = e / (D * double(p.size()));
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& g) const override {
         const double total = double(total_);
-        g.write_scalar("collisions", static_cast<std::int64_t>(total_));
+        g.value("collisions", total_);
         g.attr("component", std::string(component_name(component_)));
         write_histogram(g, "alpha_1d", linear_, total);
         write_histogram(g, "alpha_1d_tail", tail_, total);
@@ -107,11 +105,8 @@ class RestitutionStatistics final : public Observable<D>, public CollisionSink<D
             g.attr_on(name, "g", conditional_g_[k]);
         }
         const double f = total > 0 ? double(above_one_) / total : 0;
-        YAML::Node s;
-        write_estimate(g, "fraction_above_one",
-                       Estimate{f, total > 0 ? std::sqrt(f * (1 - f) / total) : 0}, "", s);
-        summary["fraction_above_one"] = s["fraction_above_one"];
-        summary["collisions"] = total_;
+        g.estimate("fraction_above_one",
+                   Estimate{f, total > 0 ? std::sqrt(f * (1 - f) / total) : 0}, "");
     }
 
   private:

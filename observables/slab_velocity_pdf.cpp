@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "observables/blocked_histogram.hpp"
 #include "libgran/plugins/observable.hpp"
+#include "observables/blocked_histogram.hpp"
 
 namespace gran {
 namespace {
@@ -61,26 +61,23 @@ class SlabVelocityPdf final : public Observable<D> {
         }
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& g) const override {
         if (!initialised_) return;
         g.attr("axis", std::string(component_name(axis_)));
         g.attr("width", width_);
         for (std::size_t k = 0; k < centres_.size(); ++k) {
-            const std::string slab = "slab_" + std::to_string(k);
-            g.group(slab).attr("centre", centres_[k]);
+            ResultGroup slab = g.group("slab_" + std::to_string(k));
+            slab.attr("centre", centres_[k]);
             for (std::size_t s = 0; s < table_.size(); ++s) {
                 for (int a = 0; a < D; ++a) {
                     const Cell& c = cell(k, s, a);
                     if (c.n == 0) continue;
-                    h5::Group gc =
-                        g.group(slab + "/" + table_.species[s].name + "/" + component_name(a));
+                    ResultGroup gc = slab.group(table_.species[s].name).group(component_name(a));
                     const double var = c.m2 / c.n;
                     c.hist.write(gc, "raw_");
                     c.hist.write(gc, "scaled_", std::sqrt(var));
-                    gc.write_scalar("temperature", table_.species[s].mass * var);
-                    gc.write_scalar("kurtosis", (c.m4 / c.n) / (var * var));
-                    summary[slab][table_.species[s].name][component_name(a)] =
-                        (c.m4 / c.n) / (var * var);
+                    gc.file_only().value("temperature", table_.species[s].mass * var);
+                    gc.value("kurtosis", (c.m4 / c.n) / (var * var));
                 }
             }
         }

@@ -72,27 +72,25 @@ class Temperatures final : public Observable<D> {
         time_.push(ctx.time);
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
-        g.write("time", time_.values());
-        g.attr_on("time", "unit", "time");
+    void write(ResultGroup& g) const override {
+        g.array("time", time_.values(), "time");
         const std::string tunit = "energy";
-        write_estimate(g, "T_mixture", mixture_.estimate(), tunit, summary);
-        g.write("series/T_mixture", mixture_.values());
+        g.estimate("T_mixture", mixture_.estimate(), tunit);
+        g.array("series/T_mixture", mixture_.values());
         for (std::size_t s = 0; s < table_.size(); ++s) {
             const auto& q = per_species_[s];
             const std::string name = table_.species[s].name;
-            h5::Group gs = g.group(name);
-            YAML::Node ss;
-            write_estimate(gs, "T", q.t.estimate(), tunit, ss);
-            gs.write("series/T", q.t.values());
+            ResultGroup gs = g.group(name, {"species", name});
+            gs.estimate("T", q.t.estimate(), tunit);
+            gs.array("series/T", q.t.values());
             for (int a = 0; a < D; ++a) {
                 const std::string c = std::string("T_") + component_name(a);
-                write_estimate(gs, c, q.t_comp[a].estimate(), tunit, ss);
-                gs.write("series/" + c, q.t_comp[a].values());
+                gs.estimate(c, q.t_comp[a].estimate(), tunit);
+                gs.array("series/" + c, q.t_comp[a].values());
             }
             if (rotating_) {
-                write_estimate(gs, "T_rot", q.t_rot.estimate(), tunit, ss);
-                gs.write("series/T_rot", q.t_rot.values());
+                gs.estimate("T_rot", q.t_rot.estimate(), tunit);
+                gs.array("series/T_rot", q.t_rot.values());
             }
             if (q.v2.size() > 0) {
                 const double k_factor = double(D) / (D + 2.0);
@@ -100,7 +98,7 @@ class Temperatures final : public Observable<D> {
                                               [k_factor](std::span<const double> m) {
                                                   return k_factor * m[0] / (m[1] * m[1]) - 1.0;
                                               });
-                write_estimate(gs, "sonine_a2", a2, "", ss);
+                gs.estimate("sonine_a2", a2, "");
                 // Instantaneous a2 of each sample: scale-free, so usable in cooling states where
                 // time averages of moments mix temperatures.
                 std::vector<double> inst(q.v2.size());
@@ -108,23 +106,18 @@ class Temperatures final : public Observable<D> {
                     inst[k] =
                         k_factor * q.v4.values()[k] / (q.v2.values()[k] * q.v2.values()[k]) - 1.0;
                 }
-                gs.write("series/sonine_a2", inst);
+                gs.array("series/sonine_a2", inst);
             }
-            summary["species"][name] = ss;
             if (s == ref_) continue;
             const auto& r = per_species_[ref_];
-            const std::string rname = name + "_over_" + table_.species[ref_].name;
-            h5::Group gr = g.group("ratios/" + rname);
-            YAML::Node rs;
-            write_estimate(gr, "gamma", ratio_of_means(q.t.values(), r.t.values()), "", rs);
+            ResultGroup gr = g.group("ratios").group(name + "_over_" + table_.species[ref_].name);
+            gr.estimate("gamma", ratio_of_means(q.t.values(), r.t.values()), "");
             for (int a = 0; a < D; ++a) {
-                write_estimate(gr, std::string("gamma_") + component_name(a),
-                               ratio_of_means(q.t_comp[a].values(), r.t_comp[a].values()), "", rs);
+                gr.estimate(std::string("gamma_") + component_name(a),
+                            ratio_of_means(q.t_comp[a].values(), r.t_comp[a].values()), "");
             }
             if (rotating_)
-                write_estimate(gr, "gamma_rot", ratio_of_means(q.t_rot.values(), r.t_rot.values()),
-                               "", rs);
-            summary["ratios"][rname] = rs;
+                gr.estimate("gamma_rot", ratio_of_means(q.t_rot.values(), r.t_rot.values()), "");
         }
         g.attr("reference_species", table_.species[ref_].name);
         g.attr("definition",

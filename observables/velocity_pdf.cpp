@@ -8,8 +8,8 @@
 #include <cmath>
 #include <vector>
 
-#include "observables/blocked_histogram.hpp"
 #include "libgran/plugins/observable.hpp"
+#include "observables/blocked_histogram.hpp"
 
 namespace gran {
 namespace {
@@ -71,22 +71,18 @@ class VelocityPdf final : public Observable<D> {
         }
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& g) const override {
         if (!initialised_) return;
         for (std::size_t s = 0; s < table_.size(); ++s) {
-            const std::string name = table_.species[s].name;
+            ResultGroup gs = g.group(table_.species[s].name);
             for (int a = 0; a < D; ++a) {
-                h5::Group gc = g.group(name + "/" + component_name(a));
-                per_[s].raw[a].write(gc, "raw_");
-                per_[s].scaled[a].write(gc, "scaled_");
-                gc.attr_on("raw_edges", "unit", "velocity");
-                gc.attr_on("scaled_edges", "unit", "sqrt(T_{s,a}/m_s)");
-                YAML::Node ks;
+                ResultGroup gc = gs.group(component_name(a));
+                per_[s].raw[a].write(gc, "raw_", 1.0, "velocity");
+                per_[s].scaled[a].write(gc, "scaled_", 1.0, "sqrt(T_{s,a}/m_s)");
                 const Estimate k =
                     jackknife({per_[s].c4[a].values(), per_[s].c2[a].values()},
                               [](std::span<const double> m) { return m[0] / (m[1] * m[1]); });
-                write_estimate(gc, "kurtosis", k, "", ks);
-                summary[name][component_name(a)] = ks;
+                gc.estimate("kurtosis", k, "");
             }
         }
         g.attr("blocks", static_cast<std::int64_t>(nblocks_));

@@ -57,33 +57,25 @@ class WallPressure final : public Observable<D> {
         have_last_ = true;
     }
 
-    void write(h5::Group& g, YAML::Node& summary) const override {
+    void write(ResultGroup& g) const override {
         g.attr("area", area_);
         g.attr("definition",
                "P = Nc dI / A (McNamara & Falcon 2005, Eq. 2); dI = sum of m |dv_n| / hits");
         for (int s = 0; s < 2; ++s) {
             if (rate_[s].size() < 2) continue;
-            const std::string side = s == 0 ? "lower" : "upper";
-            h5::Group w = g.group(side);
-            YAML::Node ws;
-            write_estimate(w, "collision_frequency", rate_[s].estimate(), "1/time", ws);
+            ResultGroup w = g.group(s == 0 ? "lower" : "upper");
+            w.estimate("collision_frequency", rate_[s].estimate(), "1/time");
             std::vector<double> pressure(force_[s].values().begin(), force_[s].values().end());
             for (double& x : pressure) x /= area_;
-            write_estimate(w, "pressure", block_average(pressure),
-                           D == 2 ? "force/length" : "force/area", ws);
+            w.estimate("pressure", block_average(pressure), D == 2 ? "force/length" : "force/area");
             bool any = false;
             for (double h : hits_[s].values()) any = any || h > 0;
             if (any) {
-                write_estimate(w, "mean_impulse",
-                               ratio_of_means(impulse_[s].values(), hits_[s].values()),
-                               "mass velocity", ws);
+                w.estimate("mean_impulse", ratio_of_means(impulse_[s].values(), hits_[s].values()),
+                           "mass velocity");
             }
-            summary[side] = ws;
         }
-        if (weight_ > 0) {
-            g.write_scalar("weight_per_area", weight_);
-            summary["weight_per_area"] = weight_;
-        }
+        if (weight_ > 0) g.value("weight_per_area", weight_);
     }
 
   private:

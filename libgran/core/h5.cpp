@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <functional>
 #include <numeric>
 #include <type_traits>
@@ -197,6 +198,34 @@ void write_string_attr(hid_t obj, const std::string& name, const std::string& va
     write_attr(obj, name, type.get(), {}, &c, where);
 }
 
+// Chunks of about this many bytes (at least one row): large enough for few chunk headers, small
+// enough for HDF5's default 1 MiB chunk cache.
+constexpr std::size_t kChunkBytes = 64 * 1024;
+
+Handle create_appendable(hid_t loc, const std::string& name, hid_t type,
+                         const std::vector<std::size_t>& row_shape, const std::string& where) {
+    std::size_t row = 1;
+    for (const std::size_t d : row_shape) row *= d;
+    if (row == 0) throw Error("h5: cannot create " + where + ": a row holds no values");
+    if (link_exists(loc, name)) check(H5Ldelete(loc, name.c_str(), H5P_DEFAULT), "replace", where);
+    std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED};
+    std::vector<hsize_t> chunk{std::max<hsize_t>(1, kChunkBytes / (row * H5Tget_size(type)))};
+    for (const std::size_t d : row_shape) {
+        dims.push_back(d);
+        max_dims.push_back(d);
+        chunk.push_back(d);
+    }
+    const int rank = static_cast<int>(dims.size());
+    const Handle space =
+        own(H5Screate_simple(rank, dims.data(), max_dims.data()), "create dataspace for", where);
+    const Handle dcpl = own(H5Pcreate(H5P_DATASET_CREATE), "create dataset properties for", where);
+    check(H5Pset_chunk(dcpl.get(), rank, chunk.data()), "set the chunks of", where);
+    const Handle lcpl = nested_link_props(where);
+    return own(
+        H5Dcreate2(loc, name.c_str(), type, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
+        "create dataset", where);
+}
+
 std::size_t point_count(hid_t space, const std::string& where) {
     const hssize_t n = H5Sget_simple_extent_npoints(space);
     if (n < 0) fail("cannot get size of " + where);
@@ -266,6 +295,15 @@ void File::flush() {
     check(H5Fflush(id_.get(), H5F_SCOPE_LOCAL), "flush file", "'" + path_ + "'");
 }
 
+std::size_t File::open_objects() const {
+    if (!id_.valid()) return 0;
+    const ssize_t n =
+        H5Fget_obj_count(id_.get(), H5F_OBJ_DATASET | H5F_OBJ_GROUP | H5F_OBJ_DATATYPE |
+                                        H5F_OBJ_ATTR | H5F_OBJ_LOCAL);
+    if (n < 0) fail("cannot count the open objects of '" + path_ + "'");
+    return static_cast<std::size_t>(n);
+}
+
 void File::close() {
     if (!id_.valid()) return;
     // Released first so a failed close is not retried by the destructor.
@@ -324,6 +362,20 @@ void Group::write_scalar(const std::string& name, double value) {
 void Group::write_scalar(const std::string& name, std::int64_t value) {
     write_dataset(id_.get(), name, H5T_NATIVE_INT64, {}, &value, where(name));
 }
+
+template <class T>
+Appendable Group::appendable(const std::string& name, std::vector<std::size_t> row_shape) {
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::int64_t>,
+                  "appendable datasets hold double or std::int64_t");
+    const std::string w = where(name);
+    constexpr bool is_double = std::is_same_v<T, double>;
+    Handle dset = create_appendable(id_.get(), name,
+                                    is_double ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64, row_shape, w);
+    return Appendable(std::move(dset), w, is_double, std::move(row_shape));
+}
+
+template Appendable Group::appendable<double>(const std::string&, std::vector<std::size_t>);
+template Appendable Group::appendable<std::int64_t>(const std::string&, std::vector<std::size_t>);
 
 void Group::write_string(const std::string& name, const std::string& value) {
     const std::string w = where(name);
@@ -452,6 +504,53 @@ void Group::copy_children_from(const Group& src) {
         check(H5Ocopy(src.id_.get(), n.c_str(), id_.get(), n.c_str(), H5P_DEFAULT, H5P_DEFAULT),
               "copy", src.where(n) + " into " + where(n));
     }
+}
+
+// ---- Appendable -------------------------------------------------------------------------------
+
+Appendable::Appendable(Handle id, std::string where, bool is_double,
+                       std::vector<std::size_t> row_shape)
+    : id_(std::move(id)),
+      where_(std::move(where)),
+      is_double_(is_double),
+      row_shape_(std::move(row_shape)) {
+    for (const std::size_t d : row_shape_) row_size_ *= d;
+}
+
+void Appendable::append(std::span<const double> values) {
+    append_rows(values.data(), values.size(), true);
+}
+
+void Appendable::append(std::span<const std::int64_t> values) {
+    append_rows(values.data(), values.size(), false);
+}
+
+void Appendable::append_rows(const void* data, std::size_t count, bool is_double) {
+    if (is_double != is_double_) {
+        throw Error(std::string("h5: cannot append ") + (is_double ? "doubles" : "integers") +
+                    " to " + where_ + ", which holds " + (is_double_ ? "doubles" : "integers"));
+    }
+    if (count % row_size_ != 0) {
+        throw Error("h5: cannot append " + std::to_string(count) + " values to " + where_ +
+                    ": rows hold " + std::to_string(row_size_));
+    }
+    const std::size_t k = count / row_size_;
+    if (k == 0) return;
+    std::vector<hsize_t> dims{rows_ + k};
+    dims.insert(dims.end(), row_shape_.begin(), row_shape_.end());
+    check(H5Dset_extent(id_.get(), dims.data()), "extend", where_);
+    const Handle file_space = own(H5Dget_space(id_.get()), "get dataspace of", where_);
+    std::vector<hsize_t> start(dims.size(), 0), block = dims;
+    start[0] = rows_;
+    block[0] = k;
+    check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, block.data(),
+                              nullptr),
+          "select the new rows of", where_);
+    const Handle memory = make_space(block, where_);
+    check(H5Dwrite(id_.get(), is_double ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64, memory.get(),
+                   file_space.get(), H5P_DEFAULT, data),
+          "append to", where_);
+    rows_ += k;
 }
 
 }  // namespace gran::h5

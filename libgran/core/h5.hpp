@@ -49,6 +49,7 @@ class Handle {
 }  // namespace detail
 
 class Group;
+class Appendable;
 
 class File {
   public:
@@ -63,6 +64,9 @@ class File {
 
     Group root() const;
     void flush();
+    // Groups, datasets and attributes of this file still open somewhere (each Group, Appendable
+    // and copy holds one): a file is only complete on disk once they are all closed.
+    std::size_t open_objects() const;
     // Idempotent. HDF5 keeps the file open until Groups obtained from it are destroyed too.
     void close();
 
@@ -95,6 +99,11 @@ class Group {
     void write_scalar(const std::string& name, T value) {
         write_scalar(name, static_cast<std::int64_t>(value));
     }
+    // A dataset grown one row at a time (first dimension unlimited, chunked), e.g. frames or time
+    // series written while a run goes on; row_shape {} makes a 1D series of scalars. Element types:
+    // double and std::int64_t. Replaces an existing object of that name.
+    template <class T>
+    Appendable appendable(const std::string& name, std::vector<std::size_t> row_shape = {});
     void write_string(const std::string& name, const std::string& value);  // scalar vlen UTF-8
     void write_strings(const std::string& name, const std::vector<std::string>& values);
 
@@ -139,6 +148,39 @@ class Group {
     detail::Handle id_;
     std::string file_;
     std::string path_;  // absolute path of this group
+};
+
+// An open dataset with an unlimited first dimension (Group::appendable). append() extends it by
+// whole rows and writes them at once: what was appended is in the file when it is flushed or
+// closed.
+class Appendable {
+  public:
+    // Move-only: a copy would count rows of its own and overwrite the other's.
+    Appendable(Appendable&&) noexcept = default;
+    Appendable& operator=(Appendable&&) noexcept = default;
+    Appendable(const Appendable&) = delete;
+    Appendable& operator=(const Appendable&) = delete;
+    ~Appendable() = default;
+
+    // `values` holds one or more whole rows (a multiple of row_size() values) of the dataset's
+    // element type; anything else throws h5::Error.
+    void append(std::span<const double> values);
+    void append(std::span<const std::int64_t> values);
+    std::size_t rows() const { return rows_; }
+    std::size_t row_size() const { return row_size_; }
+
+  private:
+    friend class Group;
+    Appendable(detail::Handle id, std::string where, bool is_double,
+               std::vector<std::size_t> row_shape);
+    void append_rows(const void* data, std::size_t count, bool is_double);
+
+    detail::Handle id_;
+    std::string where_;  // for error messages
+    bool is_double_;
+    std::vector<std::size_t> row_shape_;
+    std::size_t row_size_ = 1;
+    std::size_t rows_ = 0;
 };
 
 }  // namespace gran::h5

@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "libgran/core/h5.hpp"
 #include "libgran/core/registry.hpp"
 #include "libgran/plugins/engine_view.hpp"
 #include "libgran/plugins/scene_info.hpp"
 #include "libgran/plugins/wall.hpp"
+#include "libgran/run/result_sink.hpp"
 
 namespace gran {
 
@@ -37,8 +37,9 @@ class Driver {
     virtual double peak_velocity() const { return 0; }
     // Period of that motion (0: none), for phase-resolved averages.
     virtual double drive_period() const { return 0; }
-    // Its own statistics (e.g. injected energy) under /drivers/<name>, and lines for the summary.
-    virtual void write(h5::Group& /*group*/, YAML::Node& /*summary*/) const {}
+    // Its own statistics (e.g. injected energy) under /drivers/<name> and the summary's
+    // drivers.<name> (libgran/run/result_sink.hpp).
+    virtual void write(ResultGroup& /*out*/) const {}
 };
 
 using DriverRegistry = Registry<DimensionalPlugin<Driver>>;

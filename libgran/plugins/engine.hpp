@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "libgran/core/h5.hpp"
 #include "libgran/core/registry.hpp"
 #include "libgran/core/wall_motion.hpp"
 #include "libgran/plugins/driver.hpp"
 #include "libgran/plugins/engine_view.hpp"
 #include "libgran/plugins/observable.hpp"
+#include "libgran/run/result_sink.hpp"
 
 namespace gran {
 
@@ -51,7 +51,8 @@ class EngineRunner {
     // Positions and velocities current at now() (before observables read them).
     virtual void synchronize() = 0;
     virtual const std::string& failure() const = 0;
-    virtual void write_performance(h5::Group& perf, YAML::Node& summary, double cpu) const = 0;
+    // The engine's own counters and figures under /performance (and the summary's performance).
+    virtual void write_performance(ResultGroup& perf, double cpu) const = 0;
 };
 
 // What a scene's drivers and observables ask of an engine, without the dimension: the engine's

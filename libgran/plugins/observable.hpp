@@ -1,19 +1,17 @@
 #pragma once
 // Measurements. An observable is sampled at the run's sampling times and may subscribe to
-// collisions (collision records are built only when some observable does). Results go to
-// /observables/<name> in the HDF5 file, scalars as datasets with `error` and `unit` attributes.
-#include <yaml-cpp/yaml.h>
-
+// collisions (collision records are built only when some observable does). Results go through a
+// ResultGroup to /observables/<name> in the HDF5 file and to the run summary.
 #include <cmath>
 #include <cstdint>
 #include <string>
 
 #include "libgran/core/collision_record.hpp"
-#include "libgran/core/h5.hpp"
 #include "libgran/core/registry.hpp"
 #include "libgran/core/statistics.hpp"
 #include "libgran/plugins/engine_view.hpp"
 #include "libgran/plugins/scene_info.hpp"
+#include "libgran/run/result_sink.hpp"
 
 namespace gran {
 
@@ -37,31 +35,10 @@ class Observable {
     // that needs them on another engine is refused.
     virtual CollisionSink<D>* collision_sink() { return nullptr; }
     virtual void sample(const SampleContext<D>& ctx) = 0;
-    virtual void write(h5::Group& group, YAML::Node& summary) const = 0;
+    // Results under /observables/<name> and the summary's observables.<name>
+    // (libgran/run/result_sink.hpp).
+    virtual void write(ResultGroup& out) const = 0;
 };
-
-// Writes a scalar estimate as a dataset with attributes `error`, `unit`, and what the error rests
-// on (libgran/statistics.hpp): `n_eff` (effectively independent samples), `tau_int` (integrated
-// autocorrelation time in samples), `samples`, `converged` (0: no blocking plateau, the error is a
-// lower bound); NaN n_eff/tau_int when unknown. The summary node stays short:
-// {value, error, unit, n_eff}, plus `converged: false` only when the error is a lower bound.
-inline void write_estimate(h5::Group& g, const std::string& name, const Estimate& e,
-                           const std::string& unit, YAML::Node& summary) {
-    g.write_scalar(name, e.value);
-    g.attr_on(name, "error", e.error);
-    g.attr_on(name, "unit", unit);
-    g.attr_on(name, "n_eff", e.n_eff);
-    g.attr_on(name, "tau_int", e.tau_int);
-    g.attr_on(name, "samples", static_cast<std::int64_t>(e.samples));
-    g.attr_on(name, "converged", static_cast<std::int64_t>(e.converged ? 1 : 0));
-    YAML::Node s;
-    s["value"] = e.value;
-    s["error"] = e.error;
-    if (!unit.empty()) s["unit"] = unit;
-    if (std::isfinite(e.n_eff)) s["n_eff"] = std::round(e.n_eff);
-    if (!e.converged) s["converged"] = false;
-    summary[name] = s;
-}
 
 // Mass-weighted mean velocity: temperatures are defined from velocities relative to it.
 template <int D>
@@ -78,7 +55,6 @@ Vec<D> centre_of_mass_velocity(const Particles<D>& p, const SpeciesTable& table)
 
 using ObservableRegistry = Registry<DimensionalPlugin<Observable>>;
 
-using ObservableRegistry = Registry<DimensionalPlugin<Observable>>;
 
 inline const char* component_name(int a) {
     return a == 0 ? "x" : (a == 1 ? "y" : "z");

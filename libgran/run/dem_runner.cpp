@@ -112,53 +112,35 @@ class DemRunner final : public EngineRunner<D> {
         return Advance::Reached;
     }
 
-    void write_performance(h5::Group& perf, YAML::Node& ps, double cpu) const override {
+    void write_performance(ResultGroup& perf, double cpu) const override {
         const auto& c = engine_.counters();
         const double n = double(engine_.particles().size());
-        const double psteps = double(c.steps) * n / std::max(cpu, 1e-9);
-        perf.attr("engine", "dem");
-        perf.write_scalar("steps", static_cast<std::int64_t>(c.steps));
-        perf.write_scalar("particle_steps_per_second", psteps);
-        perf.write_scalar("dt", engine_.dt());
-        perf.write_scalar("contacts", static_cast<std::int64_t>(c.contacts));
-        perf.write_scalar("wall_contacts", static_cast<std::int64_t>(c.wall_contacts));
-        perf.write_scalar("active_contacts", static_cast<std::int64_t>(c.active_contacts));
-        perf.write_scalar("neighbour_list_builds", static_cast<std::int64_t>(c.rebuilds));
-        perf.write_scalar("max_overlap", c.max_overlap);
-        perf.attr_on("max_overlap", "unit", "contact distance");
-        ps["engine"] = "dem";
-        ps["steps"] = c.steps;
-        ps["particle_steps_per_second"] = psteps;
-        ps["dt"] = engine_.dt();
-        ps["contacts"] = c.contacts;
-        ps["wall_contacts"] = c.wall_contacts;
-        ps["neighbour_list_builds"] = c.rebuilds;
-        ps["max_overlap"] = c.max_overlap;
-        write_isolated_collisions(perf, ps);
+        perf.text("engine", "dem");
+        perf.value("steps", c.steps);
+        perf.value("particle_steps_per_second", double(c.steps) * n / std::max(cpu, 1e-9));
+        perf.value("dt", engine_.dt());
+        perf.value("contacts", c.contacts);
+        perf.value("wall_contacts", c.wall_contacts);
+        perf.file_only().value("active_contacts", c.active_contacts);
+        perf.value("neighbour_list_builds", c.rebuilds);
+        perf.value("max_overlap", c.max_overlap, "contact distance");
+        write_isolated_collisions(perf);
     }
 
   private:
     // What the run's contacts achieve: isolated head-on collisions on this engine, same law,
     // parameters and dt, at the probe speed.
-    void write_isolated_collisions(h5::Group& perf, YAML::Node& ps) const {
+    void write_isolated_collisions(ResultGroup& perf) const {
         const double v = probe_speed(sc_);
         const std::size_t ns = sc_.species.size();
         double worst_dt_over_tc = 0;
-        YAML::Node iso;
         auto report = [&](const std::string& name, const DemProbeResult& r) {
-            h5::Group g = perf.group("isolated_collisions/" + name);
-            g.write_scalar("requested_restitution", r.requested_restitution);
-            g.write_scalar("restitution", r.restitution);
-            g.write_scalar("contact_time", r.closed_form_duration);
-            g.write_scalar("measured_contact_time", r.duration);
-            g.write_scalar("dt_over_tc", r.dt_over_tc);
-            YAML::Node y;
-            y["requested_restitution"] = r.requested_restitution;
-            y["restitution"] = r.restitution;
-            y["contact_time"] = r.closed_form_duration;
-            y["measured_contact_time"] = r.duration;
-            y["dt_over_tc"] = r.dt_over_tc;
-            iso[name] = y;
+            ResultGroup g = perf.group("isolated_collisions").group(name);
+            g.value("requested_restitution", r.requested_restitution);
+            g.value("restitution", r.restitution);
+            g.value("contact_time", r.closed_form_duration);
+            g.value("measured_contact_time", r.duration);
+            g.value("dt_over_tc", r.dt_over_tc);
             worst_dt_over_tc = std::max(worst_dt_over_tc, r.dt_over_tc);
         };
         const auto& sp = sc_.species.species;
@@ -184,9 +166,7 @@ class DemRunner final : public EngineRunner<D> {
         } catch (const std::exception& e) {
             spdlog::warn("isolated-collision check failed: {}", e.what());
         }
-        perf.write_scalar("dt_over_tc", worst_dt_over_tc);
-        ps["dt_over_tc"] = worst_dt_over_tc;
-        ps["isolated_collisions"] = iso;
+        perf.value("dt_over_tc", worst_dt_over_tc);
     }
 
     const Scene& sc_;

@@ -65,9 +65,8 @@ EquilibrationCheck check_equilibration(std::span<const double> series) {
 }
 
 void report_equilibration(const EquilibrationCheck& check, const Schedule& schedule,
-                          bool steady_state_expected, h5::Group& performance,
-                          YAML::Node& performance_summary) {
-    h5::Group g = performance.group("equilibration");
+                          bool steady_state_expected, ResultGroup& performance) {
+    ResultGroup g = performance.group("equilibration");
     g.attr("criterion",
            fmt::format("MSER-5 truncation (White 1997) of the kinetic energy per particle at the "
                        "measurement samples; shift_z = (mean of all - mean after the truncation) "
@@ -75,22 +74,14 @@ void report_equilibration(const EquilibrationCheck& check, const Schedule& sched
                        "samples (conclusive); drift_z = (mean of 2nd half - mean of 1st half) / "
                        "error",
                        kRelaxingShift, kMinEffectiveSamplesForCheck));
-    g.write_scalar("samples", static_cast<std::int64_t>(check.samples));
-    g.write_scalar("truncation_samples", static_cast<std::int64_t>(check.truncation));
-    g.write_scalar("truncation_fraction", check.truncation_fraction);
-    g.write_scalar("drift_z", check.drift_z);
-    g.write_scalar("shift_z", check.shift_z);
-    g.write_scalar("n_eff", check.n_eff);
-    g.write_scalar("conclusive", static_cast<std::int64_t>(check.conclusive ? 1 : 0));
-    g.write_scalar("relaxing", static_cast<std::int64_t>(check.relaxing ? 1 : 0));
-    YAML::Node y;
-    y["truncation_samples"] = check.truncation;
-    y["truncation_fraction"] = check.truncation_fraction;
-    y["drift_z"] = check.drift_z;
-    y["shift_z"] = check.shift_z;
-    y["n_eff"] = std::isfinite(check.n_eff) ? std::round(check.n_eff) : check.n_eff;
-    y["conclusive"] = check.conclusive;
-    y["relaxing"] = check.relaxing;
+    g.file_only().value("samples", check.samples);
+    g.value("truncation_samples", check.truncation);
+    g.value("truncation_fraction", check.truncation_fraction);
+    g.value("drift_z", check.drift_z);
+    g.value("shift_z", check.shift_z);
+    g.value("n_eff", check.n_eff);
+    g.flag("conclusive", check.conclusive);
+    g.flag("relaxing", check.relaxing);
     if (check.relaxing && steady_state_expected) {
         const double at_least =
             schedule.equilibration + double(check.truncation) * schedule.sample_interval;
@@ -103,10 +94,8 @@ void report_equilibration(const EquilibrationCheck& check, const Schedule& sched
             100 * check.truncation_fraction, check.truncation, check.samples, check.shift_z,
             at_least, unit);
         spdlog::warn("{}", warning);
-        g.attr("warning", warning);
-        y["warning"] = warning;
+        g.text("warning", warning);
     }
-    performance_summary["equilibration"] = y;
 }
 
 }  // namespace gran

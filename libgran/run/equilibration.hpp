@@ -7,12 +7,10 @@
 // S. C. Spratt, Proc. Winter Simulation Conf. 2000, 755.
 #pragma once
 
-#include <yaml-cpp/yaml.h>
-
 #include <cstddef>
 #include <span>
 
-#include "libgran/core/h5.hpp"
+#include "libgran/run/result_sink.hpp"
 #include "libgran/scene/schedule.hpp"
 
 namespace gran {
@@ -59,12 +57,11 @@ struct EquilibrationCheck {
 
 EquilibrationCheck check_equilibration(std::span<const double> series);
 
-// Writes /performance/equilibration and the summary node performance.equilibration; when the
-// measurement was still relaxing and the scene is meant to reach a steady state (it has a driver
-// injecting energy), logs a warning and puts it in the summary, with the run.equilibration that
-// would have skipped the transient.
+// Writes the group `equilibration` of /performance (HDF5 and summary); when the measurement was
+// still relaxing and the scene is meant to reach a steady state (it has a driver injecting
+// energy), logs a warning and writes it there too, with the run.equilibration that would have
+// skipped the transient.
 void report_equilibration(const EquilibrationCheck& check, const Schedule& schedule,
-                          bool steady_state_expected, h5::Group& performance,
-                          YAML::Node& performance_summary);
+                          bool steady_state_expected, ResultGroup& performance);
 
 }  // namespace gran

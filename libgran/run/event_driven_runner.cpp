@@ -132,34 +132,26 @@ class EventDrivenRunner final : public EngineRunner<D> {
         }
     }
 
-    void write_performance(h5::Group& perf, YAML::Node& ps, double cpu) const override {
+    void write_performance(ResultGroup& perf, double cpu) const override {
         const auto& c = engine_.counters();
         const double n = double(engine_.particles().size());
-        perf.attr("engine", "event_driven");
-        perf.write_scalar("events", static_cast<std::int64_t>(c.events));
-        perf.write_scalar("collisions", static_cast<std::int64_t>(c.collisions));
-        perf.write_scalar("events_per_second", double(c.events) / std::max(cpu, 1e-9));
-        perf.write_scalar("collisions_per_second", double(c.collisions) / std::max(cpu, 1e-9));
-        perf.write_scalar("cell_crossings", static_cast<std::int64_t>(c.cell_crossings));
-        perf.write_scalar("wall_hits", static_cast<std::int64_t>(c.wall_hits));
-        perf.write_scalar("stale_events", static_cast<std::int64_t>(c.stale_events));
-        perf.write_scalar("tc_guard_collisions", static_cast<std::int64_t>(c.tc_collisions));
-        perf.write_scalar("overlap_collisions", static_cast<std::int64_t>(c.overlap_collisions));
-        perf.write_scalar("full_reschedules", static_cast<std::int64_t>(c.full_reschedules));
-        perf.write_scalar("collisions_per_particle", 2.0 * double(c.collisions) / n);
-        ps["engine"] = "event_driven";
-        ps["events"] = c.events;
-        ps["collisions"] = c.collisions;
-        ps["events_per_second"] = double(c.events) / std::max(cpu, 1e-9);
-        ps["collisions_per_second"] = double(c.collisions) / std::max(cpu, 1e-9);
-        ps["collisions_per_particle"] = 2.0 * double(c.collisions) / n;
-        ps["tc_guard_collisions"] = c.tc_collisions;
-        ps["overlap_collisions"] = c.overlap_collisions;
-        ps["full_reschedules"] = c.full_reschedules;
+        perf.text("engine", "event_driven");
+        perf.value("events", c.events);
+        perf.value("collisions", c.collisions);
+        perf.value("events_per_second", double(c.events) / std::max(cpu, 1e-9));
+        perf.value("collisions_per_second", double(c.collisions) / std::max(cpu, 1e-9));
+        perf.value("collisions_per_particle", 2.0 * double(c.collisions) / n);
+        perf.value("tc_guard_collisions", c.tc_collisions);
+        perf.value("overlap_collisions", c.overlap_collisions);
+        perf.value("full_reschedules", c.full_reschedules);
         if (c.full_reschedules > 0 && c.collisions > 0) {
-            ps["reschedules_per_collision_per_particle"] =
-                double(c.full_reschedules) * n / (2.0 * double(c.collisions));
+            perf.value("reschedules_per_collision_per_particle",
+                       double(c.full_reschedules) * n / (2.0 * double(c.collisions)));
         }
+        ResultGroup detail = perf.file_only();
+        detail.value("cell_crossings", c.cell_crossings);
+        detail.value("wall_hits", c.wall_hits);
+        detail.value("stale_events", c.stale_events);
     }
 
   private:

@@ -2,317 +2,203 @@
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <ctime>
-#include <filesystem>
-#include <fstream>
 
-#include "libgran/core/h5.hpp"
 #include "libgran/plugins/engine.hpp"
 #include "libgran/run/equilibration.hpp"
+#include "libgran/run/frames.hpp"
+#include "libgran/run/progress.hpp"
+#include "libgran/run/result_file.hpp"
+#include "libgran/run/result_sink.hpp"
 #include "libgran/run/initial_state.hpp"
+#include "libgran/run/simulation.hpp"
 #include "libgran/run/watchdog.hpp"
 
 namespace gran {
 
 namespace {
 
-class Progress {
-  public:
-    Progress(const RunOptions& o, double log_interval, const char* unit)
-        : opt_(o), log_interval_(log_interval), unit_(unit) {
-        start_ = Clock::now();
-        last_log_ = start_;
-    }
-    void update(const char* phase, double fraction, std::uint64_t events, bool force = false) {
-        if (!opt_.progress) return;
-        const auto now = Clock::now();
-        const double since = std::chrono::duration<double>(now - last_draw_).count();
-        if (!force && opt_.terminal && since < 0.2) return;
-        if (!force && !opt_.terminal &&
-            std::chrono::duration<double>(now - last_log_).count() < log_interval_)
-            return;
-        last_draw_ = now;
-        const double elapsed = std::chrono::duration<double>(now - start_).count();
-        const double rate = elapsed > 0 ? double(events) / elapsed : 0;
-        const double eta = fraction > 1e-9 ? elapsed * (1 - fraction) / fraction : 0;
-        const std::string line =
-            fmt::format("{:<13} {:5.1f}%  elapsed {:.0f}s  ETA {:.0f}s  {:.3g} {}/s", phase,
-                        100 * fraction, elapsed, eta, rate, unit_);
-        if (opt_.terminal) {
-            std::fprintf(stderr, "\r%s   ", line.c_str());
-            std::fflush(stderr);
-            drawn_ = true;
-        } else {
-            spdlog::info("{}", line);
-            last_log_ = now;
-        }
-    }
-    void finish() {
-        if (drawn_) std::fprintf(stderr, "\n");
-    }
-    double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-
-  private:
-    using Clock = std::chrono::steady_clock;
-    const RunOptions& opt_;
-    double log_interval_;
-    const char* unit_;
-    Clock::time_point start_, last_draw_{}, last_log_;
-    bool drawn_ = false;
-};
-
-std::string summary_path_for(const std::string& out) {
-    std::filesystem::path p(out);
-    p.replace_extension(".summary.yaml");
-    return p.string();
-}
-
-// The scene's drivers and observables, built with what they may read of the scene.
-template <int D>
-std::pair<DriverList<D>, ObservableList<D>> make_plugins(const Scene& sc) {
-    DriverList<D> drivers;
-    for (std::size_t k = 0; k < sc.drivers.size(); ++k) {
-        drivers.push_back(DriverRegistry::instance().find(sc.drivers[k].type)->template make<D>(
-            sc.drivers[k].params, plugin_info(sc, k)));
-    }
-    ObservableList<D> observables;
-    for (std::size_t k = 0; k < sc.observables.size(); ++k) {
-        observables.push_back(
-            ObservableRegistry::instance().find(sc.observables[k].type)->template make<D>(
-                sc.observables[k].params, plugin_info(sc, k)));
-    }
-    return {std::move(drivers), std::move(observables)};
-}
-
-template <int D>
-RunReport run_with(const Scene& sc, const RunOptions& opt, DriverList<D>& drivers,
-                   ObservableList<D>& observables) {
-    const double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;
-    const auto runner_ptr = sc.engine->template make<D>(sc, drivers, observables);
-    EngineRunner<D>& runner = *runner_ptr;
-    const EngineView<D>& view = runner.view();
-
-    const std::size_t n = view.particles().size();
-    const auto& s = sc.schedule;
-    const bool by_time = s.unit == ScheduleUnit::Time;
-    auto coll_of = [&](double cpp) {
-        return static_cast<std::uint64_t>(std::llround(cpp * double(n) / 2.0));
-    };
-    const std::size_t expected_samples =
-        static_cast<std::size_t>(std::floor(s.measurement / s.sample_interval + 1e-9));
-
-    // Trajectory frames (equally spaced over the measurement samples).
-    std::vector<double> frame_time;
-    std::vector<double> frame_pos, frame_vel;
-    std::size_t frame_every =
-        sc.frames > 0 ? std::max<std::size_t>(1, expected_samples / sc.frames) : 0;
-
-    Progress progress(opt, sc.progress_interval, runner.work_unit());
+// What the schedule did, for the result.
+struct ScheduleOutcome {
     bool interrupted = false;
-    bool stalled = false;
-    std::string watchdog_stop;  // why the watchdog stopped the run (empty: it did not)
-    std::size_t samples_taken = 0;
+    bool stalled = false;                 // no more events, or the watchdog stopped the run
+    std::string watchdog_stop;            // why the watchdog stopped the run (empty: it did not)
+    std::size_t samples = 0;              // measurement samples taken
     std::vector<double> measured_energy;  // per measurement sample, for the warm-up check
-    measured_energy.reserve(expected_samples);
     double t_measure_start = 0;
     std::uint64_t coll_measure_start = 0;
+    bool stopped() const { return interrupted || stalled; }
+    std::string status() const {
+        return interrupted              ? "interrupted"
+               : !watchdog_stop.empty() ? "stopped by the watchdog"
+               : stalled                ? "stopped: no more events"
+                                        : "completed";
+    }
+};
 
-    for (int phase = 0; phase < 2 && !interrupted && !stalled; ++phase) {
-        const bool measuring = phase == 1;
+// Equilibration then measurement, each with samples at fixed intervals (of time or collisions per
+// particle); at each sample the observables are sampled and frames appended to the result file.
+template <int D>
+class ScheduleLoop {
+  public:
+    ScheduleLoop(const Scene& sc, const RunOptions& opt, EngineRunner<D>& runner,
+                 ObservableList<D>& observables, ResultGroup root)
+        : sc_(sc),
+          opt_(opt),
+          runner_(runner),
+          observables_(observables),
+          expected_samples_(samples_in(sc.schedule.measurement)),
+          frames_(std::move(root), frame_box(sc), sc.frames, expected_samples_),
+          progress_(opt.progress, opt.terminal, sc.progress_interval, runner.work_unit()) {
+        out_.measured_energy.reserve(expected_samples_);
+    }
+
+    ScheduleOutcome run() {
+        for (int phase = 0; phase < 2 && !out_.stopped(); ++phase) run_phase(phase == 1);
+        progress_.finish();
+        return std::move(out_);
+    }
+    double elapsed() const { return progress_.elapsed(); }
+
+  private:
+    std::size_t samples_in(double length) const {
+        return static_cast<std::size_t>(std::floor(length / sc_.schedule.sample_interval + 1e-9));
+    }
+
+    void run_phase(bool measuring) {
+        const auto& s = sc_.schedule;
         const double length = measuring ? s.measurement : s.equilibration;
-        if (length <= 0) continue;
-        const double t0 = runner.now();
-        const std::uint64_t c0 = runner.collisions();
+        if (length <= 0) return;
+        const double t0 = runner_.now();
+        const std::uint64_t c0 = runner_.collisions();
         if (measuring) {
-            t_measure_start = t0;
-            coll_measure_start = c0;
+            out_.t_measure_start = t0;
+            out_.coll_measure_start = c0;
         }
-        const std::size_t nsamples =
-            static_cast<std::size_t>(std::floor(length / s.sample_interval + 1e-9));
-        for (std::size_t k = 1; k <= nsamples && !interrupted && !stalled; ++k) {
-            const double t_target = by_time ? t0 + double(k) * s.sample_interval : kInf;
-            const std::uint64_t c_target =
-                by_time ? UINT64_MAX : c0 + coll_of(double(k) * s.sample_interval);
-            const Advance adv = runner.advance(t_target, c_target, UINT64_MAX, opt.interrupt);
-            interrupted = adv == Advance::Interrupted;
-            stalled = adv == Advance::Stalled || adv == Advance::Watchdog;
-            if (adv == Advance::Watchdog) watchdog_stop = runner.failure();
-            if (interrupted || stalled) break;
-            runner.synchronize();
-            if (sc.watchdog.enabled) {
-                watchdog_stop = check_finite<D>(view, sc.species);  // never sample a NaN
-                stalled = !watchdog_stop.empty();
-                if (stalled) break;
-            }
-            SampleContext<D> ctx{runner.now(), measuring, expected_samples, view, sc.species};
-            for (auto& o : observables) o->sample(ctx);
-            if (measuring) {
-                ++samples_taken;
-                measured_energy.push_back(view.kinetic_energy_per_particle(sc.species));
-                if (frame_every && samples_taken % frame_every == 0 &&
-                    frame_time.size() < sc.frames) {
-                    frame_time.push_back(runner.now());
-                    // Frames list particles by their original index (the engine may re-sort).
-                    const std::size_t base = frame_pos.size();
-                    frame_pos.resize(base + n * D);
-                    frame_vel.resize(base + n * D);
-                    const auto& p = view.particles();
-                    for (std::size_t i = 0; i < n; ++i) {
-                        const std::size_t at = base + std::size_t(view.id(i)) * D;
-                        for (int a = 0; a < D; ++a) {
-                            frame_pos[at + std::size_t(a)] = p.r[i][a];
-                            frame_vel[at + std::size_t(a)] = p.v[i][a];
-                        }
-                    }
-                }
-            }
+        const std::size_t nsamples = samples_in(length);
+        for (std::size_t k = 1; k <= nsamples; ++k) {
+            if (!advance_to(t0, c0, k)) return;
+            sample(measuring);
             const double done =
                 (measuring ? s.equilibration : 0.0) + length * double(k) / double(nsamples);
-            progress.update(measuring ? "measurement" : "equilibration",
-                            done / (s.equilibration + s.measurement), runner.work());
+            progress_.update(measuring ? "measurement" : "equilibration",
+                             done / (s.equilibration + s.measurement), runner_.work());
         }
     }
-    progress.finish();
-    const double wall = progress.elapsed();
-    const double cpu = double(std::clock()) / CLOCKS_PER_SEC - cpu0;
-    if (interrupted) spdlog::warn("interrupted: writing what was measured so far");
-    if (!watchdog_stop.empty()) spdlog::warn("watchdog: writing what was measured so far");
 
-    // Write to a temporary file and rename: an existing result is never clobbered by a failed run.
-    const auto parent = std::filesystem::path(opt.output).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
-    const std::string part = opt.output + ".part";
-    RunReport rep;
-    rep.completed = !interrupted && !stalled;
-    rep.error = watchdog_stop;
-    rep.output = opt.output;
-    rep.summary_file = summary_path_for(opt.output);
-    YAML::Node summary;
-    {
-        h5::File file = h5::File::create(part);
-        h5::Group root = file.root();
-        h5::Group h5md = root.group("h5md");
-        const std::vector<std::int64_t> version{1, 1};
-        h5md.attr("version", std::span<const std::int64_t>(version));
-        const char* user = std::getenv("USER");
-        h5md.group("author").attr("name", user ? user : "gran user");
-        h5::Group creator = h5md.group("creator");
-        creator.attr("name", "gran");
-        creator.attr("version", GRAN_VERSION);
-
-        h5::Group par = root.group("parameters");
-        YAML::Emitter em;
-        em << sc.resolved;
-        par.write_string("scene", em.c_str());
-        par.attr("source_file", sc.file);
-        par.attr("packing_fraction", sc.packing_fraction);
-        std::string cmd;
-        for (const auto& a : opt.command_line) cmd += (cmd.empty() ? "" : " ") + a;
-        par.attr("command_line", cmd);
-        par.attr("units", sc.units == "SI"
-                              ? "SI: lengths in m, masses in kg, times in s, energies in J, "
-                                "temperatures as energies (k_B = 1: J)"
-                              : "reduced: lengths, masses and energies as given in the scene "
-                                "(k_B = 1)");
-
-        YAML::Node obs_summary;
-        for (std::size_t k = 0; k < observables.size(); ++k) {
-            h5::Group g = root.group("observables/" + sc.observables[k].name);
-            g.attr("type", sc.observables[k].type);
-            YAML::Node os;
-            observables[k]->write(g, os);
-            obs_summary[sc.observables[k].name] = os;
+    // To the k-th sample of a phase that started at time t0 with c0 collisions; false when the
+    // run stops there (interrupt, no more events, watchdog).
+    bool advance_to(double t0, std::uint64_t c0, std::size_t k) {
+        const auto& s = sc_.schedule;
+        const bool by_time = s.unit == ScheduleUnit::Time;
+        const double at = double(k) * s.sample_interval;  // time, or collisions per particle
+        const double n = double(runner_.view().particles().size());
+        const double t_target = by_time ? t0 + at : kInf;
+        const std::uint64_t c_target =
+            by_time ? UINT64_MAX : c0 + static_cast<std::uint64_t>(std::llround(at * n / 2.0));
+        const Advance adv = runner_.advance(t_target, c_target, UINT64_MAX, opt_.interrupt);
+        out_.interrupted = adv == Advance::Interrupted;
+        out_.stalled = adv == Advance::Stalled || adv == Advance::Watchdog;
+        if (adv == Advance::Watchdog) out_.watchdog_stop = runner_.failure();
+        if (out_.stopped()) return false;
+        runner_.synchronize();
+        if (sc_.watchdog.enabled) {  // never sample a NaN
+            out_.watchdog_stop = check_finite<D>(runner_.view(), sc_.species);
+            out_.stalled = !out_.watchdog_stop.empty();
         }
-        YAML::Node drv_summary;
-        for (std::size_t k = 0; k < drivers.size(); ++k) {
-            h5::Group g = root.group("drivers/" + sc.drivers[k].name);
-            YAML::Node ds;
-            drivers[k]->write(g, ds);
-            drv_summary[sc.drivers[k].name] = ds;
-        }
-
-        const double measured_coll = double(runner.collisions() - coll_measure_start);
-        h5::Group perf = root.group("performance");
-        perf.write_scalar("wall_time", wall);
-        perf.attr_on("wall_time", "unit", "s");
-        perf.write_scalar("cpu_time", cpu);
-        perf.attr_on("cpu_time", "unit", "s");
-        YAML::Node ps;
-        ps["wall_time_s"] = wall;
-        ps["cpu_time_s"] = cpu;
-        runner.write_performance(perf, ps, cpu);
-        perf.write_scalar("final_time", runner.now());
-        perf.write_scalar("measured_collisions_per_particle", 2.0 * measured_coll / double(n));
-        perf.write_scalar("measured_time", runner.now() - t_measure_start);
-        perf.write_scalar("samples", static_cast<std::int64_t>(samples_taken));
-        perf.write_scalar("completed", static_cast<std::int64_t>(rep.completed ? 1 : 0));
-        perf.write_scalar("interrupted", static_cast<std::int64_t>(interrupted ? 1 : 0));
-        // Free cooling (no driver injecting energy) is not meant to be stationary.
-        const bool driven = std::any_of(sc.drivers.begin(), sc.drivers.end(),
-                                        [](const auto& d) { return d.type != "none"; });
-        report_equilibration(check_equilibration(measured_energy), s, driven, perf, ps);
-        if (!watchdog_stop.empty()) perf.attr("watchdog_stop", watchdog_stop);
-
-        if (!frame_time.empty()) {
-            h5::Group pg = root.group("particles/all");
-            h5::Group bx = pg.group("box");
-            bx.attr("dimension", static_cast<std::int64_t>(D));
-            std::vector<std::string> boundary;
-            for (int a = 0; a < D; ++a)
-                boundary.push_back(sc.periodic[std::size_t(a)] ? "periodic" : "none");
-            bx.attr("boundary", boundary);
-            bx.write("edges", sc.box_length);
-            const std::vector<std::size_t> shape{frame_time.size(), n, std::size_t(D)};
-            std::vector<std::int64_t> steps(frame_time.size());
-            for (std::size_t k = 0; k < steps.size(); ++k) steps[k] = std::int64_t(k);
-            for (const char* what : {"position", "velocity"}) {
-                h5::Group q = pg.group(what);
-                q.write("value", std::string(what) == "position" ? frame_pos : frame_vel, shape);
-                q.write("time", frame_time);
-                q.write("step", steps);
-            }
-            std::vector<std::int64_t> spec(n);
-            for (std::size_t i = 0; i < n; ++i) spec[view.id(i)] = view.particles().species[i];
-            pg.write("species", spec);
-        }
-
-        summary["scene"] = sc.file;
-        if (!sc.title.empty()) summary["title"] = sc.title;
-        summary["result"] = opt.output;
-        summary["status"] = interrupted              ? "interrupted"
-                            : !watchdog_stop.empty() ? "stopped by the watchdog"
-                            : stalled                ? "stopped: no more events"
-                                                     : "completed";
-        if (!watchdog_stop.empty()) summary["error"] = watchdog_stop;
-        summary["dimension"] = D;
-        summary["particles"] = n;
-        summary["packing_fraction"] = sc.packing_fraction;
-        summary["observables"] = obs_summary;
-        if (drv_summary.size() > 0) summary["drivers"] = drv_summary;
-        summary["performance"] = ps;
-        file.close();
+        return !out_.stalled;
     }
-    std::filesystem::rename(part, opt.output);
-    {
-        std::ofstream out(rep.summary_file);
-        YAML::Emitter em;
-        em << summary;
-        out << "# gran run summary (values with one-standard-error bars)\n" << em.c_str() << "\n";
+
+    void sample(bool measuring) {
+        const EngineView<D>& view = runner_.view();
+        SampleContext<D> ctx{runner_.now(), measuring, expected_samples_, view, sc_.species};
+        for (auto& o : observables_) o->sample(ctx);
+        if (!measuring) return;
+        ++out_.samples;
+        out_.measured_energy.push_back(view.kinetic_energy_per_particle(sc_.species));
+        if (frames_.due(out_.samples)) {
+            frame_of<D>(view, positions_, velocities_, species_);
+            frames_.append(runner_.now(), positions_, velocities_, species_);
+        }
     }
-    rep.summary = summary;
-    return rep;
+
+    const Scene& sc_;
+    const RunOptions& opt_;
+    EngineRunner<D>& runner_;
+    ObservableList<D>& observables_;
+    std::size_t expected_samples_;
+    FrameWriter frames_;
+    Progress progress_;
+    ScheduleOutcome out_;
+    std::vector<double> positions_, velocities_;  // one frame, reused
+    std::vector<std::int64_t> species_;
+};
+
+// /observables, /drivers and /performance (with the summary's observables, drivers, performance).
+template <int D>
+void write_results(ResultGroup root, const Scene& sc, const EngineRunner<D>& runner,
+                   const DriverList<D>& drivers, const ObservableList<D>& observables,
+                   const ScheduleOutcome& out, const RunTotals& totals) {
+    for (std::size_t k = 0; k < observables.size(); ++k) {
+        ResultGroup g = root.group("observables").group(sc.observables[k].name);
+        g.attr("type", sc.observables[k].type);
+        observables[k]->write(g);
+    }
+    for (std::size_t k = 0; k < drivers.size(); ++k) {
+        ResultGroup g = root.group("drivers").group(sc.drivers[k].name);
+        drivers[k]->write(g);
+    }
+    ResultGroup perf = root.group("performance");
+    write_run_performance(perf, totals);
+    runner.write_performance(perf, totals.cpu_time);
+    // Free cooling (no driver injecting energy) is not meant to be stationary.
+    const bool driven = std::any_of(sc.drivers.begin(), sc.drivers.end(),
+                                    [](const auto& d) { return d.type != "none"; });
+    report_equilibration(check_equilibration(out.measured_energy), sc.schedule, driven, perf);
 }
 
+// Runs the scene's Simulation through its schedule and writes the result.
 template <int D>
-RunReport run_dim(const Scene& sc, const RunOptions& opt) {
-    auto [drivers, observables] = make_plugins<D>(sc);
-    return run_with<D>(sc, opt, drivers, observables);
+RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, double cpu0) {
+    SimulationState<D>& st = sim.state<D>();
+    EngineRunner<D>& runner = *st.runner;
+    // Created once the scene is known to run (the runner checked it): a failing run leaves the
+    // .part file and never touches an earlier result.
+    ResultSink sink(opt.output);
+    write_provenance(sink.root(), sc, opt.command_line);
+    ScheduleOutcome out;
+    RunTotals totals;
+    {
+        ScheduleLoop<D> loop(sc, opt, runner, st.observables, sink.root());
+        out = loop.run();
+        totals.wall_time = loop.elapsed();
+    }  // closes the frames
+    totals.cpu_time = double(std::clock()) / CLOCKS_PER_SEC - cpu0;
+    if (out.interrupted) spdlog::warn("interrupted: writing what was measured so far");
+    if (!out.watchdog_stop.empty()) spdlog::warn("watchdog: writing what was measured so far");
+    const std::size_t n = runner.view().particles().size();
+    totals.final_time = runner.now();
+    totals.measured_time = runner.now() - out.t_measure_start;
+    totals.measured_collisions_per_particle =
+        2.0 * double(runner.collisions() - out.coll_measure_start) / double(n);
+    totals.samples = out.samples;
+    totals.completed = !out.stopped();
+    totals.interrupted = out.interrupted;
+    totals.watchdog_stop = out.watchdog_stop;
+    write_summary_header(sink.summary(), sc, opt.output, out.status(), out.watchdog_stop, n);
+    write_results<D>(sink.root(), sc, runner, st.drivers, st.observables, out, totals);
+    sink.finish();
+
+    RunReport rep;
+    rep.completed = totals.completed;
+    rep.error = out.watchdog_stop;
+    rep.output = opt.output;
+    rep.summary_file = sink.summary_file();
+    rep.summary = sink.summary();
+    return rep;
 }
 
 }  // namespace
@@ -326,7 +212,10 @@ void check_scene(const Scene& scene) {
 }
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
-    return scene.dimension == 2 ? run_dim<2>(scene, options) : run_dim<3>(scene, options);
+    const double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;  // the cost includes the set-up
+    Simulation sim(scene, options.interrupt);
+    return scene.dimension == 2 ? run_with<2>(sim.scene(), options, sim, cpu0)
+                                : run_with<3>(sim.scene(), options, sim, cpu0);
 }
 
 }  // namespace gran

@@ -20,8 +20,8 @@
 #include <thread>
 
 #include "libgran/core/h5.hpp"
-#include "libgran/scene/scene.hpp"
 #include "libgran/core/scene_error.hpp"
+#include "libgran/scene/scene.hpp"
 #include "libgran/study/study_fit.hpp"
 #include "libgran/study/study_tradeoff.hpp"
 
@@ -389,14 +389,16 @@ pid_t spawn_run(const std::string& binary, const std::string& scene, const std::
     return pid;
 }
 
-// Every number in a run summary: estimates (value, error) and plain counters, keyed by their
-// dotted path ("observables.profiles.middle/ratios/light_over_heavy/gamma").
+// Every number in a run summary: estimates {value, error, ...}, values with a unit
+// {value, unit} (error NaN) and plain counters, keyed by their dotted path
+// ("observables.profiles.middle/ratios/light_over_heavy/gamma", "performance.cpu_time").
 void flatten(const YAML::Node& n, const std::string& prefix,
              std::map<std::string, std::pair<double, double>>& out) {
     if (n.IsMap()) {
-        if (n["value"] && n["error"] && n["value"].IsScalar()) {
+        if (n["value"] && n["value"].IsScalar()) {
             try {
-                out[prefix] = {n["value"].as<double>(), n["error"].as<double>()};
+                out[prefix] = {n["value"].as<double>(),
+                               n["error"] ? n["error"].as<double>() : std::nan("")};
             } catch (const YAML::Exception&) {
             }
             return;

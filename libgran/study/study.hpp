@@ -41,7 +41,7 @@ struct StudyTradeoff {
     std::string reference = "reference";  // the point whose runs are the reference
     std::vector<std::string> quantities;  // summary quantities; empty: the default patterns
     std::vector<std::pair<std::string, double>> analytic;  // quantity -> exact value
-    std::string cost = "performance.cpu_time_s";
+    std::string cost = "performance.cpu_time";
 };
 
 struct Study {

@@ -249,7 +249,7 @@ TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>&
         r.reference = st.runs[i].point == spec.reference;
         auto c = rows[i].find(spec.cost);
         r.cost = c == rows[i].end() ? std::nan("") : c->second.first;
-        auto w = rows[i].find("performance.wall_time_s");
+        auto w = rows[i].find("performance.wall_time");
         r.wall = w == rows[i].end() ? std::nan("") : w->second.first;
         r.worst = 0;
         for (std::size_t q = 0; q < nq; ++q) {
@@ -357,7 +357,8 @@ void write_tradeoff(h5::Group& root, const TradeoffResult& t) {
 
 void write_tradeoff_csv(const std::string& path, const TradeoffResult& t) {
     std::ofstream o(path);
-    o << "run,point,knob,level,cost_s,wall_time_s,reference_run,worst_accuracy,pareto";
+    // cost and wall_time in s, named as in /tradeoff and the run summaries.
+    o << "run,point,knob,level,cost,wall_time,reference_run,worst_accuracy,pareto";
     for (const auto& q : t.quantities) {
         for (const char* c : {"value", "error", "deviation", "deviation_error", "pareto"})
             o << "," << q << "." << c;
@@ -366,7 +367,7 @@ void write_tradeoff_csv(const std::string& path, const TradeoffResult& t) {
     auto num = [](double x) { return std::isnan(x) ? std::string() : fmt::format("{:.8g}", x); };
     for (const auto& r : t.rows) {
         o << r.run << "," << r.point << "," << r.knob << "," << r.level << "," << num(r.cost) << ","
-          << int(r.reference) << "," << num(r.worst) << "," << int(r.pareto);
+          << num(r.wall) << "," << int(r.reference) << "," << num(r.worst) << "," << int(r.pareto);
         for (const auto& c : r.cells) {
             o << "," << num(c.value) << "," << num(c.error) << "," << num(c.deviation) << ","
               << num(c.deviation_error) << "," << int(c.pareto);
@@ -396,9 +397,9 @@ std::string tradeoff_table(const TradeoffResult& t) {
                      [&](std::size_t a, std::size_t b) { return t.rows[a].cost < t.rows[b].cost; });
     for (std::size_t k : order) {
         const auto& r = t.rows[k];
-        s += fmt::format("| {}{} | {} | {} | {:.3g} | {:.3g} |", r.run,
-                         r.reference ? " (ref)" : "", r.knob.empty() ? "-" : r.knob,
-                         r.level.empty() ? "-" : r.level, r.cost, r.wall);
+        s += fmt::format("| {}{} | {} | {} | {:.3g} | {:.3g} |", r.run, r.reference ? " (ref)" : "",
+                         r.knob.empty() ? "-" : r.knob, r.level.empty() ? "-" : r.level, r.cost,
+                         r.wall);
         for (const auto& c : r.cells) {
             if (std::isnan(c.deviation))
                 s += " - |";

@@ -406,6 +406,80 @@ TEST_F(H5Group, ReadingWrongKindThrows) {
     EXPECT_THROW(root.read_attr_double("arr"), Error);  // not a single value
 }
 
+// ---- Appendable datasets ------------------------------------------------------------------
+
+TEST_F(H5Group, AppendableGrowsByRowsAndReadsBack) {
+    {
+        File f = File::create(path("a.h5"));
+        gran::h5::Appendable frames = f.root().appendable<double>("frames/value", {2, 3});
+        EXPECT_EQ(frames.rows(), 0u);
+        EXPECT_EQ(frames.row_size(), 6u);
+        frames.append(std::vector<double>{1, 2, 3, 4, 5, 6});
+        frames.append(std::vector<double>{7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18});  // two
+        EXPECT_EQ(frames.rows(), 3u);
+        gran::h5::Appendable step = f.root().appendable<std::int64_t>("frames/step");
+        for (std::int64_t k = 0; k < 5; ++k) step.append(std::vector<std::int64_t>{k});
+    }
+    File f = File::open_read(path("a.h5"));
+    const Group root = f.root();
+    EXPECT_EQ(root.shape("frames/value"), (std::vector<std::size_t>{3, 2, 3}));
+    std::vector<double> want(18);
+    for (std::size_t k = 0; k < want.size(); ++k) want[k] = double(k + 1);
+    EXPECT_EQ(root.read_doubles("frames/value"), want);
+    EXPECT_EQ(root.read_int64s("frames/step"), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
+}
+
+TEST_F(H5Group, AppendableIsChunkedWithUnlimitedFirstDimension) {
+    {
+        File f = File::create(path("a.h5"));
+        f.root().appendable<double>("x", {4}).append(std::vector<double>(8, 1.0));
+    }
+    RawFile raw(path("a.h5"));
+    const hid_t d = H5Dopen2(raw.id, "x", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(d);
+    hsize_t dims[2], max_dims[2];
+    ASSERT_EQ(H5Sget_simple_extent_dims(space, dims, max_dims), 2);
+    EXPECT_EQ(dims[0], 2u);
+    EXPECT_EQ(max_dims[0], H5S_UNLIMITED);
+    EXPECT_EQ(max_dims[1], 4u);
+    const hid_t dcpl = H5Dget_create_plist(d);
+    EXPECT_EQ(H5Pget_layout(dcpl), H5D_CHUNKED);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+    H5Dclose(d);
+}
+
+TEST_F(H5Group, AppendableRejectsPartialRowsAndOtherTypes) {
+    File f = File::create(path("a.h5"));
+    gran::h5::Appendable a = f.root().appendable<double>("x", {3});
+    EXPECT_THROW(a.append(std::vector<double>{1, 2}), Error);
+    EXPECT_THROW(a.append(std::vector<std::int64_t>{1, 2, 3}), Error);
+    a.append(std::vector<double>{});  // no rows: nothing to do
+    EXPECT_EQ(a.rows(), 0u);
+    EXPECT_THROW(f.root().appendable<double>("y", {0}), Error);
+}
+
+TEST_F(H5Group, AppendableReplacesAnExistingDataset) {
+    File f = File::create(path("a.h5"));
+    Group root = f.root();
+    root.write("x", std::vector<double>{1, 2, 3});
+    root.appendable<std::int64_t>("x").append(std::vector<std::int64_t>{7});
+    EXPECT_EQ(root.read_int64s("x"), std::vector<std::int64_t>{7});
+}
+
+TEST_F(H5File, CountsTheObjectsStillOpen) {
+    File f = File::create(path("a.h5"));
+    EXPECT_EQ(f.open_objects(), 0u);
+    {
+        Group g = f.root().group("g");
+        gran::h5::Appendable a = g.appendable<double>("x");
+        EXPECT_EQ(f.open_objects(), 2u);  // the group and the dataset
+    }
+    EXPECT_EQ(f.open_objects(), 0u);
+    f.close();
+    EXPECT_EQ(f.open_objects(), 0u);
+}
+
 // A file with every kind of content, for checking with external readers (h5py). Set
 // GRAN_H5_KEEP_FILE to a path to keep it there.
 TEST_F(H5Group, WritesEveryKindIntoOneFile) {

@@ -3,6 +3,7 @@
 // command end to end (table, HDF5 group, CSV, PNG).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -54,9 +55,9 @@ gran::Study two_run_study(bool analytic) {
 TEST(TradeoffAnalysis, DeviationFromTheReferenceRunCombinesBothErrors) {
     const gran::Study st = two_run_study(false);
     std::vector<gran::Row> rows(2);
-    rows[0] = {{"q", {2.2, 0.03}}, {"performance.cpu_time_s", {1.0, std::nan("")}}};
-    rows[1] = {{"q", {2.0, 0.04}}, {"performance.cpu_time_s", {10.0, std::nan("")}}};
-    const auto t = gran::analyse_tradeoff(st, {"q", "performance.cpu_time_s"}, rows, {true, true});
+    rows[0] = {{"q", {2.2, 0.03}}, {"performance.cpu_time", {1.0, std::nan("")}}};
+    rows[1] = {{"q", {2.0, 0.04}}, {"performance.cpu_time", {10.0, std::nan("")}}};
+    const auto t = gran::analyse_tradeoff(st, {"q", "performance.cpu_time"}, rows, {true, true});
     ASSERT_EQ(t.quantities, std::vector<std::string>{"q"});
     ASSERT_EQ(t.rows.size(), 2u);
     const auto& c = t.rows[0].cells[0];
@@ -77,9 +78,9 @@ TEST(TradeoffAnalysis, DeviationFromTheReferenceRunCombinesBothErrors) {
 TEST(TradeoffAnalysis, AnAnalyticValueIsTheReferenceWithNoErrorOfItsOwn) {
     const gran::Study st = two_run_study(true);
     std::vector<gran::Row> rows(2);
-    rows[0] = {{"q", {2.2, 0.03}}, {"performance.cpu_time_s", {1.0, std::nan("")}}};
-    rows[1] = {{"q", {1.9, 0.01}}, {"performance.cpu_time_s", {10.0, std::nan("")}}};
-    const auto t = gran::analyse_tradeoff(st, {"q", "performance.cpu_time_s"}, rows, {true, true});
+    rows[0] = {{"q", {2.2, 0.03}}, {"performance.cpu_time", {1.0, std::nan("")}}};
+    rows[1] = {{"q", {1.9, 0.01}}, {"performance.cpu_time", {10.0, std::nan("")}}};
+    const auto t = gran::analyse_tradeoff(st, {"q", "performance.cpu_time"}, rows, {true, true});
     ASSERT_EQ(t.reference_kind, std::vector<std::string>{"analytic"});
     EXPECT_NEAR(t.rows[0].cells[0].deviation_error, 0.015, 1e-12);
     EXPECT_NEAR(t.rows[1].cells[0].deviation, -0.05, 1e-12);
@@ -217,6 +218,20 @@ run: {equilibration: 10, measurement: 100}
     // base (sample interval 1: the scene's own), kick interval x4 and x2, sample interval 2, the
     // reference (kick interval x1/2; the sample interval's best level is the base's).
     EXPECT_EQ(runs.size(), 5u);
+    // The cost and wall time come from each run's summary (performance.cpu_time, .wall_time).
+    for (double c : runs) EXPECT_GT(c, 0);
+    for (double w : f.root().read_doubles("tradeoff/wall_time")) EXPECT_GT(w, 0);
+    {
+        // Every row of the CSV has a field per column of its header.
+        std::ifstream csv(fs::path(out) / "gas.tradeoff.csv");
+        std::string header, row;
+        ASSERT_TRUE(std::getline(csv, header));
+        EXPECT_EQ(header.rfind("run,point,knob,level,cost,wall_time,", 0), 0u) << header;
+        while (std::getline(csv, row))
+            EXPECT_EQ(std::count(row.begin(), row.end(), ','),
+                      std::count(header.begin(), header.end(), ','))
+                << row;
+    }
     const auto dev =
         f.root().read_doubles("tradeoff/quantities/observables.temperatures.T_mixture/deviation");
     ASSERT_EQ(dev.size(), runs.size());

@@ -1,0 +1,62 @@
+#include "libgran/run/result_file.hpp"
+
+#include <cstdlib>
+#include <span>
+
+namespace gran {
+
+void write_provenance(ResultGroup root, const Scene& sc,
+                      const std::vector<std::string>& command_line) {
+    ResultGroup file = root.file_only();
+    ResultGroup h5md = file.group("h5md");
+    const std::vector<std::int64_t> version{1, 1};
+    h5md.attr("version", std::span<const std::int64_t>(version));
+    const char* user = std::getenv("USER");
+    h5md.group("author").attr("name", user ? user : "gran user");
+    ResultGroup creator = h5md.group("creator");
+    creator.attr("name", "gran");
+    creator.attr("version", GRAN_VERSION);
+
+    ResultGroup par = file.group("parameters");
+    YAML::Emitter em;
+    em << sc.resolved;
+    par.text_dataset("scene", em.c_str());
+    par.attr("source_file", sc.file);
+    par.attr("packing_fraction", sc.packing_fraction);
+    std::string cmd;
+    for (const auto& a : command_line) cmd += (cmd.empty() ? "" : " ") + a;
+    par.attr("command_line", cmd);
+    par.attr("units", sc.units == "SI"
+                          ? "SI: lengths in m, masses in kg, times in s, energies in J, "
+                            "temperatures as energies (k_B = 1: J)"
+                          : "reduced: lengths, masses and energies as given in the scene "
+                            "(k_B = 1)");
+}
+
+void write_run_performance(ResultGroup& performance, const RunTotals& t) {
+    performance.value("wall_time", t.wall_time, "s");
+    performance.value("cpu_time", t.cpu_time, "s");
+    ResultGroup file = performance.file_only();
+    file.value("final_time", t.final_time);
+    file.value("measured_collisions_per_particle", t.measured_collisions_per_particle);
+    file.value("measured_time", t.measured_time);
+    file.value("samples", t.samples);
+    file.flag("completed", t.completed);
+    file.flag("interrupted", t.interrupted);
+    if (!t.watchdog_stop.empty()) file.attr("watchdog_stop", t.watchdog_stop);
+}
+
+void write_summary_header(YAML::Node& summary, const Scene& sc, const std::string& output,
+                          const std::string& status, const std::string& error,
+                          std::size_t particles) {
+    summary["scene"] = sc.file;
+    if (!sc.title.empty()) summary["title"] = sc.title;
+    summary["result"] = output;
+    summary["status"] = status;
+    if (!error.empty()) summary["error"] = error;
+    summary["dimension"] = sc.dimension;
+    summary["particles"] = particles;
+    summary["packing_fraction"] = sc.packing_fraction;
+}
+
+}  // namespace gran

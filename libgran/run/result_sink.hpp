@@ -1,0 +1,133 @@
+#pragma once
+// The one way results leave a run: each quantity is described once (name, value, error, unit) and
+// lands both in the HDF5 result file and in the human-readable summary, which therefore cannot
+// disagree. Arrays, histograms, series and attributes go to the HDF5 file only.
+//
+// Rules, the same for every plugin and for the run loop:
+//   - a name is a path in HDF5 ("middle/T" nests groups) and one key in the summary ("middle/T");
+//     group("a") nests in both;
+//   - estimate(): dataset with attributes error, unit ('' when dimensionless), n_eff, tau_int,
+//     samples, converged; summary {value, error, unit (when not ''), n_eff (rounded, when known),
+//     converged: false (only when the error is a lower bound)};
+//   - value(): scalar dataset (double or int64) with a `unit` attribute when it has a unit;
+//     summary `name: value` when dimensionless, `name: {value, unit}` otherwise;
+//   - flag(): int64 0/1 in HDF5 (what h5py users compare), true/false in the summary;
+//   - text(): string attribute of the group in HDF5, string in the summary;
+//   - file_only() gives the same group writing nothing to the summary (settings echoed back,
+//     counters too detailed for the summary).
+#include <yaml-cpp/yaml.h>
+
+#include <concepts>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "libgran/core/h5.hpp"
+#include "libgran/core/statistics.hpp"
+
+namespace gran {
+
+// Integers written as counts (int64 in HDF5); a bool is a flag().
+template <class T>
+concept Count = std::integral<T> && !std::same_as<T, bool>;
+
+class ResultGroup {
+  public:
+    ResultGroup(h5::Group file, YAML::Node summary, bool summarise = true)
+        : file_(std::move(file)), summary_(std::move(summary)), summarise_(summarise) {}
+
+    // Sub-group `name` in HDF5 and in the summary.
+    ResultGroup group(const std::string& name);
+    // Sub-group `name` in HDF5 whose summary node is at `summary_keys` below this one (e.g. the
+    // temperatures' species groups, summarised under `species`).
+    ResultGroup group(const std::string& name, const std::vector<std::string>& summary_keys);
+    // This group, writing to the HDF5 file only.
+    ResultGroup file_only() const { return ResultGroup(file_, summary_, false); }
+
+    // ---- Quantities: HDF5 and summary -------------------------------------------------------
+    void estimate(const std::string& name, const Estimate& e, const std::string& unit);
+    void value(const std::string& name, double v, const std::string& unit = "");
+    template <Count T>
+    void value(const std::string& name, T v, const std::string& unit = "") {
+        file_.write_scalar(name, static_cast<std::int64_t>(v));
+        finish_value(name, unit);
+        if (summarise_) summarise(name, YAML::Node(v), unit);
+    }
+    void flag(const std::string& name, bool v);
+    void text(const std::string& name, const std::string& v);
+
+    // ---- HDF5 only ---------------------------------------------------------------------------
+    // Arrays: empty dims => 1D; otherwise the shape (h5::Group::write).
+    void array(const std::string& name, std::span<const double> v, const std::string& unit = "",
+               std::vector<std::size_t> dims = {});
+    void array(const std::string& name, std::span<const std::int64_t> v,
+               const std::string& unit = "", std::vector<std::size_t> dims = {});
+    // A profile and its errors: `name` (with its unit) and `name_error`.
+    void profile(const std::string& name, std::span<const double> values,
+                 std::span<const double> errors, const std::string& unit = "");
+    // A histogram as <prefix>edges (with the unit of x), <prefix>density and <prefix>error.
+    void histogram(const std::string& prefix, std::span<const double> edges,
+                   std::span<const double> density, std::span<const double> error,
+                   const std::string& edges_unit = "");
+    // A dataset appended to row by row while the run goes on (h5::Group::appendable).
+    template <class T>
+    h5::Appendable series(const std::string& name, std::vector<std::size_t> row_shape = {},
+                          const std::string& unit = "") {
+        h5::Appendable a = file_.appendable<T>(name, std::move(row_shape));
+        if (!unit.empty()) file_.attr_on(name, "unit", unit);
+        return a;
+    }
+    void text_dataset(const std::string& name, const std::string& v) {
+        file_.write_string(name, v);
+    }
+    // Attributes of this group, and of one of its datasets or sub-groups (h5::Group::attr).
+    template <class V>
+    void attr(const std::string& name, const V& v) {
+        file_.attr(name, v);
+    }
+    template <class V>
+    void attr_on(const std::string& object, const std::string& name, const V& v) {
+        file_.attr_on(object, name, v);
+    }
+
+  private:
+    void finish_value(const std::string& name, const std::string& unit);
+    void summarise(const std::string& name, const YAML::Node& v, const std::string& unit);
+
+    h5::Group file_;
+    YAML::Node summary_;  // a node of the summary (yaml-cpp adds it to its parent when written)
+    bool summarise_;
+};
+
+// The result of one run: OUT.h5.part is created with the sink and written to while the run goes
+// on; finish() closes it, renames it to OUT.h5 and writes OUT.summary.yaml. A run that fails
+// before finish() leaves an earlier OUT.h5 and its summary as they were.
+class ResultSink {
+  public:
+    // Creates OUT's folder and OUT.h5.part (h5::Error naming the path when it cannot).
+    explicit ResultSink(std::string output);
+    ResultSink(const ResultSink&) = delete;
+    ResultSink& operator=(const ResultSink&) = delete;
+
+    ResultGroup root();
+    // Entries of the summary that are not quantities (scene, status, ...).
+    YAML::Node& summary() { return summary_; }
+    const std::string& output() const { return output_; }
+    const std::string& part() const { return part_; }
+    const std::string& summary_file() const { return summary_file_; }
+    // Every group and series obtained from root() must be gone: the file is complete only once
+    // all are closed (std::logic_error otherwise).
+    void finish();
+
+  private:
+    std::string output_, part_, summary_file_;
+    h5::File file_;
+    YAML::Node summary_;
+};
+
+// OUT.summary.yaml beside OUT.h5.
+std::string summary_path_for(const std::string& output);
+
+}  // namespace gran
