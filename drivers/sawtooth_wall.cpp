@@ -22,6 +22,11 @@ class SawtoothWall final : public WallDriver<D> {
     }
 };
 
+const char* const kDescription =
+    R"md(
+Barrat & Trizac 2002: every particle meets the wall moving into the gas at speed v0 at its
+fixed position, so v_n' = 2 v0 - v_n at the lower wall (and -2 v0 - v_n at the upper) when e = 1.)md";
+
 const bool registered = register_plugin<Driver, SawtoothWall>(
     "sawtooth_wall",
     "sawtooth vibrating wall: particles meet the wall moving into the gas at speed v0",
@@ -30,7 +35,8 @@ const bool registered = register_plugin<Driver, SawtoothWall>(
                       true)};
         for (auto& r : wall_restitution_schema()) s.push_back(r);
         return s;
-    }()));
+    }()),
+    wall_description(kDescription));
 
 }  // namespace
 }  // namespace gran

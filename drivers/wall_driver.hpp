@@ -8,11 +8,25 @@
 #include <stdexcept>
 #include <string>
 
-#include "libgran/plugins/driver.hpp"
 #include "libgran/core/random.hpp"
+#include "libgran/plugins/driver.hpp"
 #include "species/restitution_params.hpp"
 
 namespace gran {
+
+// A wall driver's description (docs/scene-reference.md): its own prose, then how the restitution
+// keys combine (when it declares them), then what every wall driver shares.
+inline std::string wall_description(const std::string& own, bool restitution_keys = true) {
+    std::string s = own + "\n\n";
+    if (restitution_keys) s += std::string(kWallRestitutionDescription) + "\n\n";
+    return s +
+           R"md(
+A wall driver installs its particle-wall rule on one or both walls of a bounded axis
+(`box.periodic` false there); walls without a wall driver are static and elastic. Walls have
+infinite mass. Each wall driver reports its hits and the momentum it gave (sum of m |dv_n|, whole
+run) per wall under `/drivers/<name>`; the `wall_pressure` observable measures rates, impulses and
+pressure during the measurement.)md";
+}
 
 inline Schema wall_schema(Schema extra, std::string default_side = "both") {
     Schema s{

@@ -5,6 +5,11 @@
 namespace gran {
 namespace {
 
+const char* const kDescription =
+    R"md(
+The default law of every pair: alpha and beta of Barrat & Trizac 2002, Eq. (1) and Appendix A.
+Its nominal restitution is alpha.)md";
+
 const bool registered = PairLawRegistry::instance().add(PairLaw{
     "constant_restitution",
     "hard-particle collision with constant normal (alpha) and tangential (beta) restitution",
@@ -18,7 +23,8 @@ const bool registered = PairLawRegistry::instance().add(PairLaw{
         c.alpha = p.real("alpha");
         c.beta = p.real("beta");
         c.restitution = constant_impact_restitution(c.alpha);
-    }});
+    },
+    kDescription});
 
 }  // namespace
 }  // namespace gran

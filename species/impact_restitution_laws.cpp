@@ -14,6 +14,20 @@ const ParamSpec kBeta =
          "1 = perfectly rough)",
          -1, 1);
 
+const char* const kMcNamaraFalconDescription =
+    R"md(
+Normal restitution of the impact speed v = |g_n| (McNamara & Falcon 2005, Eq. 1):
+r(v) = 1 - (1 - r0)(v/v0)^(1/5) for v <= v0 (viscoelastic), r0 (v/v0)^(-1/4) for v >= v0 (plastic).
+Continuous at v0; r -> 1 as v -> 0. The paper: r0 = 0.95, v0 = 0.3 m/s (stainless steel).
+Nominal restitution (for kinetic-theory estimates): r0.)md";
+
+const char* const kViscoelasticDescription =
+    R"md(
+Viscoelastic spheres (Schwager & Poeschel 1998; Ramirez et al. 1999): e(v) = 1 - C1 x + C2 x^2,
+x = gamma v^(1/5), C1 = 1.15345, C2 = (3/5) C1^2. Accurate to 4e-3 for x <= 0.3 (e >= 0.72);
+beyond the series' minimum x = 0.7225 (e = 7/12) e is held constant so it never rises with speed.
+Nominal restitution (for kinetic-theory estimates): 1.)md";
+
 const bool mcnamara_falcon = PairLawRegistry::instance().add(PairLaw{
     "mcnamara_falcon",
     "hard-particle collision with r(v) = 1 - (1 - r0)(v/v0)^(1/5) below v0, r0 (v/v0)^(-1/4) above "
@@ -23,7 +37,8 @@ const bool mcnamara_falcon = PairLawRegistry::instance().add(PairLaw{
         c.restitution = mcnamara_falcon_impact_restitution(p.real("r0"), p.real("v0"));
         c.alpha = c.restitution.r0;  // nominal: r(v0)
         c.beta = p.real("beta");
-    }});
+    },
+    kMcNamaraFalconDescription});
 
 const bool viscoelastic = PairLawRegistry::instance().add(PairLaw{
     "viscoelastic",
@@ -34,7 +49,8 @@ const bool viscoelastic = PairLawRegistry::instance().add(PairLaw{
         c.restitution = viscoelastic_impact_restitution(p.real("gamma"));
         c.alpha = 1.0;  // nominal: the v -> 0 limit
         c.beta = p.real("beta");
-    }});
+    },
+    kViscoelasticDescription});
 
 }  // namespace
 }  // namespace gran

@@ -16,7 +16,17 @@ struct PairLaw {
     std::string summary;
     Schema schema;
     std::function<void(const Params&, PairCoefficients&)> apply;
+    // Markdown paragraphs for docs/scene-reference.md (`gran list --markdown`); may be empty.
+    std::string description = {};
 };
+
+// Introduction of the pair laws in docs/scene-reference.md.
+inline constexpr const char* kPairLawsDescription =
+    R"md(
+`interactions.law` chooses the law of every pair and `interactions.pairs[].law` that of one
+pair; the law's parameters are keys of the same map. Kinetic-theory estimates that need a single
+restitution (e.g. the thermostat's default interval) use the law's nominal value, given with each
+law below.)md";
 
 class PairLawRegistry {
   public:

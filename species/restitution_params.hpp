@@ -34,6 +34,16 @@ inline Schema wall_restitution_schema() {
             optional(viscoelastic_gamma_spec())};
 }
 
+// How the keys of wall_restitution_schema() combine, for the wall drivers' descriptions
+// (docs/scene-reference.md).
+inline constexpr const char* kWallRestitutionDescription =
+    R"md(
+A wall moving with velocity u reflects a particle by v_n' - u = -e (v_n - u) (u = 0 for static
+walls). The restitution e is the constant `restitution` (with `restitution_law: constant`), or a
+function of the impact speed |v_n - u|, as the pair laws of the same names: `mcnamara_falcon` takes
+`r0` (e at the yield velocity v0) and `v0`, `viscoelastic` takes `gamma` (the gamma of the
+series).)md";
+
 inline ImpactRestitution read_wall_restitution(const Params& p) {
     const std::string law = p.str("restitution_law");
     auto need = [&p, &law](const char* key) {

@@ -35,16 +35,30 @@ std::size_t SpeciesTable::index_of(const std::string& name) const {
 
 Schema species_schema() {
     return {
-        text("name", "", "name of the species (used in results and pair overrides)"),
+        text("name", "", "name of the species (used in results and pair overrides; unique)"),
         real("mass", "1", "mass", "particle mass", 0, 1e308, true),
         real("diameter", "1", "length", "particle diameter sigma", 0, 1e308, true),
-        optional(integer("count", "", "number of particles of this species", 1, 1e9)),
+        optional(integer("count", "",
+                         "number of particles of this species (give count for every species, "
+                         "or number_fraction for every species)",
+                         1, 1e9)),
         optional(real("number_fraction", "", "",
-                      "fraction of `particles` (scene key) in this species", 0, 1, true, false)),
+                      "fraction of `particles` (scene key) in this species; the fractions must add "
+                      "up to 1",
+                      0, 1, true, false)),
         optional(real("inertia_factor", "", "",
                       "q in I = q m sigma^2/4 (default 1/2 for disks, 2/5 for spheres)", 0, 1, true,
                       false)),
     };
+}
+
+Schema interactions_schema() {
+    ParamSpec pairs;
+    pairs.name = "pairs";
+    pairs.type = ParamType::List;
+    pairs.optional = true;
+    pairs.doc = "per-pair overrides: a list of {between: [a, b], <law parameters>}";
+    return {text("law", "constant_restitution", "default pair law of every pair"), pairs};
 }
 
 Schema pair_override_schema() {
@@ -152,13 +166,7 @@ SpeciesTable read_species(const YAML::Node& species, const YAML::Node& interacti
         law_node.IsDefined() ? law_node.as<std::string>() : "constant_restitution";
     const PairLaw& law = find_law(law_name, wi.child("law"), law_node);
     Schema schema = law.schema;
-    schema.push_back(text("law", "constant_restitution", "default pair law of every pair"));
-    ParamSpec pairs_spec;
-    pairs_spec.name = "pairs";
-    pairs_spec.type = ParamType::List;
-    pairs_spec.optional = true;
-    pairs_spec.doc = "per-pair overrides: a list of {between: [a, b], <law parameters>}";
-    schema.push_back(pairs_spec);
+    for (const auto& spec : interactions_schema()) schema.push_back(spec);
     Params ip = read_params(interactions, schema, wi);
     PairCoefficients base;
     base.law = law_name;

@@ -47,6 +47,8 @@ struct SpeciesTable {
 };
 
 Schema species_schema();
+// The interactions section's own keys; the parameters of its law join them.
+Schema interactions_schema();
 Schema pair_override_schema();
 
 // Parses the `species` list and the `interactions` section. `total_particles` (>0) resolves

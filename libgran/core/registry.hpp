@@ -20,6 +20,7 @@ struct Plugin {
     std::string name;
     std::string summary;
     Schema schema;
+    std::string description;  // Markdown paragraphs for docs/scene-reference.md; may be empty
     std::function<std::unique_ptr<Base<2>>(const Params&, const SceneInfo&)> make2;
     std::function<std::unique_ptr<Base<3>>(const Params&, const SceneInfo&)> make3;
 
@@ -64,12 +65,16 @@ class Registry {
 };
 
 // Registers Impl<2> and Impl<3> (each constructible from (const Params&, const SceneInfo&)).
+// `description`: what the summary and the keys' docs leave out (conventions, what is refused, what
+// is written), printed by `gran list --markdown`.
 template <template <int> class Base, template <int> class Impl>
-bool register_plugin(std::string name, std::string summary, Schema schema) {
+bool register_plugin(std::string name, std::string summary, Schema schema,
+                     std::string description = {}) {
     Plugin<Base> p;
     p.name = std::move(name);
     p.summary = std::move(summary);
     p.schema = std::move(schema);
+    p.description = std::move(description);
     p.make2 = [](const Params& prm, const SceneInfo& s) -> std::unique_ptr<Base<2>> {
         return std::make_unique<Impl<2>>(prm, s);
     };

@@ -5,10 +5,10 @@
 
 #include <string>
 
-#include "libgran/engines/dem/engine.hpp"
-#include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/core/h5.hpp"
 #include "libgran/core/registry.hpp"
+#include "libgran/engines/dem/engine.hpp"
+#include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/scene_info.hpp"
 
 namespace gran {
@@ -40,5 +40,11 @@ class Driver {
     // Its own statistics (e.g. injected energy) under /drivers/<name>, and lines for the summary.
     virtual void write(h5::Group& /*group*/, YAML::Node& /*summary*/) const {}
 };
+
+// Introduction of the drivers in docs/scene-reference.md (`gran list --markdown`).
+inline constexpr const char* kDriversDescription =
+    R"md(
+Each entry of the scene's `drivers` list is `{type: <name>, ...parameters}`; an optional `name`
+sets the result group name (default: the type).)md";
 
 }  // namespace gran

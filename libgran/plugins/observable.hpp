@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <string>
 
-#include "libgran/engines/engine_view.hpp"
 #include "libgran/core/h5.hpp"
 #include "libgran/core/registry.hpp"
-#include "libgran/scene/scene_info.hpp"
 #include "libgran/core/statistics.hpp"
+#include "libgran/engines/engine_view.hpp"
+#include "libgran/scene/scene_info.hpp"
 
 namespace gran {
 
@@ -78,5 +78,14 @@ Vec<D> centre_of_mass_velocity(const Particles<D>& p, const SpeciesTable& table)
 inline const char* component_name(int a) {
     return a == 0 ? "x" : (a == 1 ? "y" : "z");
 }
+
+// Introduction of the observables in docs/scene-reference.md (`gran list --markdown`).
+inline constexpr const char* kObservablesDescription =
+    R"md(
+Each entry of the scene's `observables` list is `{type: <name>, ...parameters}`; an optional
+`name` sets the result group `/observables/<name>` (default: the type). Scalars are datasets with
+`error` and `unit` attributes, and `n_eff` (effectively independent samples), `tau_int` (integrated
+autocorrelation time in samples), `samples` and `converged` (0: no blocking plateau, the error is a
+lower bound); the summary gives `{value, error, unit, n_eff}` (docs/physics.md, "Error bars").)md";
 
 }  // namespace gran

@@ -8,8 +8,9 @@
 #include <numbers>
 
 #include "libgran/plugins/driver.hpp"
-#include "libgran/scene/placement.hpp"
 #include "libgran/plugins/observable.hpp"
+#include "libgran/scene/placement.hpp"
+#include "libgran/scene/scene_schemas.hpp"
 
 namespace gran {
 
@@ -27,42 +28,57 @@ ParamSpec list_of(ParamType t, std::string name, std::string doc, bool opt = tru
 ParamSpec gravity_spec() {
     ParamSpec g = real("gravity", "", "length/time^2",
                        "uniform gravitational acceleration vector, one component per axis (e.g. "
-                       "[0, -9.81] in SI); parabolic free flight in the event-driven engine");
+                       "[0, -9.81] in SI; default none); parabolic free flight in the "
+                       "event-driven engine (pair collisions stay exact: both partners fall "
+                       "alike)");
     g.type = ParamType::RealList;
     g.optional = true;
     g.default_value = "";
     return g;
 }
 
+}  // namespace
+
 Schema top_schema() {
     return {
-        optional(text("title", "", "free text describing the scene")),
+        optional(text("title", "", "free text describing the scene, copied to results")),
         integer("dimension", "", "2 (disks) or 3 (spheres)", 2, 3),
         integer("seed", "1", "random seed: the same scene and seed give identical results", 0,
                 9.2e18),
         optional(integer("particles", "",
-                         "total number of particles (when species give number_fraction)", 1, 1e9)),
+                         "total number of particles: needed when species give number_fraction; "
+                         "given with counts, they must add up to it",
+                         1, 1e9)),
         list_of(ParamType::Map, "box", "box geometry (see section box)", false),
         list_of(ParamType::List, "species", "list of species (see section species)", false),
-        list_of(ParamType::Map, "interactions", "pair laws (see section interactions)"),
-        list_of(ParamType::Map, "initial", "initial configuration (see section initial)"),
+        list_of(ParamType::Map, "interactions",
+                "pair laws (see section interactions; default: every pair elastic and smooth)"),
+        list_of(ParamType::Map, "initial",
+                "initial configuration (see section initial; default: random placement, T = 1)"),
         list_of(ParamType::List, "drivers",
-                "energy injection: list of {type: <driver>, ...} (`gran list drivers`)"),
+                "energy injection: list of {type: <driver>, ...} (`gran list drivers`; default: "
+                "none, free cooling)"),
         list_of(ParamType::List, "observables",
-                "measurements: list of {type: <observable>, ...} (`gran list observables`)"),
-        list_of(ParamType::Map, "engine", "engine and numerical settings (see section engine)"),
+                "measurements: list of {type: <observable>, ...} (`gran list observables`; "
+                "default: none)"),
+        list_of(ParamType::Map, "engine",
+                "engine and numerical settings (see section engine; default: event_driven)"),
         list_of(ParamType::Map, "run", "run schedule (see section run)", false),
-        list_of(ParamType::Map, "output", "output settings (see section output)"),
+        list_of(ParamType::Map, "output",
+                "output settings (see section output; default: no frames)"),
         gravity_spec(),
         choice("units", "reduced", {"reduced", "SI"},
                "unit system the numbers are written in: reduced (lengths, masses and energies as "
-               "given, k_B = 1) or SI (m, kg, s, Hz, J; e.g. McNamara & Falcon 2005)"),
+               "given, k_B = 1) or SI (m, kg, s, Hz, J, temperatures as energies; e.g. McNamara & "
+               "Falcon 2005). No number is converted: write every value in the chosen system. "
+               "Results state it in /parameters@units"),
     };
 }
 
 Schema box_schema() {
     ParamSpec lengths =
-        real("lengths", "", "length", "box edge lengths, one per axis", 0, 1e308, true);
+        real("lengths", "", "length",
+             "box edge lengths, one per axis; the box is [0, L_a) on each axis", 0, 1e308, true);
     lengths.type = ParamType::RealList;
     lengths.optional = true;
     lengths.default_value = "";
@@ -72,7 +88,9 @@ Schema box_schema() {
     aspect.type = ParamType::RealList;
     aspect.optional = true;
     ParamSpec periodic =
-        boolean("periodic", "", "per axis: periodic (true) or bounded by static elastic walls");
+        boolean("periodic", "",
+                "per axis: periodic (true) or bounded by static elastic walls at 0 and L "
+                "(default: all true)");
     periodic.type = ParamType::BoolList;
     periodic.default_value = "";
     periodic.optional = true;
@@ -84,9 +102,14 @@ Schema box_schema() {
 
 Schema initial_schema() {
     return {choice("placement", "random", {"random", "lattice", "close_packed"},
-                   "random non-overlapping insertion, a square/cubic lattice, or a hexagonal/fcc "
-                   "lattice (close_packed: up to the densest packing)"),
-            real("temperature", "1", "energy", "initial temperature of every species (Maxwellian)",
+                   "random: random sequential insertion (largest first; jams near packing fraction "
+                   "0.55 in 2D, 0.38 in 3D); lattice: a square/cubic lattice with shuffled species "
+                   "(up to pi/4, pi/6); close_packed: a hexagonal (2D) or fcc (3D) lattice "
+                   "stretched to the box, up to the densest packing 0.9069 / 0.7405 (less on "
+                   "bounded axes, which keep a radius of clearance), vacancies spread evenly"),
+            real("temperature", "1", "energy",
+                 "Maxwellian velocities at this temperature for every species, zero total "
+                 "momentum",
                  0, 1e308, true)};
 }
 
@@ -147,7 +170,10 @@ Schema engine_schema() {
 Schema run_schema() {
     return {choice("unit", "collisions_per_particle", {"collisions_per_particle", "time"},
                    "unit of the schedule lengths (collisions per particle = 2 N_coll / N)"),
-            real("equilibration", "0", "unit", "length of the equilibration phase (not measured)",
+            real("equilibration", "0", "unit",
+                 "length of the equilibration phase: not measured (except by kinetic_energy); "
+                 "checked after the run (/performance/equilibration, MSER-5, warning when too "
+                 "short)",
                  0, 1e308),
             real("measurement", "", "unit", "length of the measurement phase", 0, 1e308, true),
             real("sample_interval", "1", "unit", "interval between samples of the observables", 0,
@@ -155,7 +181,8 @@ Schema run_schema() {
             real("progress_interval", "10", "s",
                  "seconds between progress log lines when not on a terminal", 0, 1e308, true),
             list_of(ParamType::Map, "watchdog",
-                    "stops a run that stalls or produces NaN (see section run.watchdog)")};
+                    "stops a run that stalls or produces NaN (see section run.watchdog; on by "
+                    "default)")};
 }
 
 Schema watchdog_schema() {
@@ -173,15 +200,20 @@ Schema watchdog_schema() {
              1, 1e308),
         real("max_events_per_tc", "0.1", "",
              "event_driven with the TC model: stop when a window has more events per particle "
-             "per TC window engine.tc than this (resting contacts resolved by micro-collisions)",
+             "per TC window engine.tc than this: grains resting on each other or on a floor are "
+             "then resolved by micro-collisions every ~tc (use the dem engine for beds at rest)",
              0, 1e308, true)};
 }
 
 Schema output_schema() {
     return {integer(
         "frames", "0",
-        "trajectory frames written under /particles (equally spaced in the measurement)", 0, 1e6)};
+        "trajectory frames (positions, velocities) written under /particles/all (equally spaced "
+        "in the measurement)",
+        0, 1e6)};
 }
+
+namespace {
 
 // engine.type: dem. Grain-grain restitution comes from the pair laws (constant_restitution
 // alpha, smooth: roughness on this engine is friction, engine.friction); walls are elastic unless
@@ -313,23 +345,6 @@ std::vector<std::string> split(const std::string& s, char sep) {
 }
 
 }  // namespace
-
-std::vector<SectionDoc> scene_sections() {
-    return {
-        {"scene", "top-level keys of a scene file", top_schema()},
-        {"box", "box geometry: give lengths, or packing_fraction (and aspect)", box_schema()},
-        {"species", "one entry per species", species_schema()},
-        {"interactions",
-         "default pair law and its parameters, plus `pairs` overrides (see `gran list laws`)",
-         {text("law", "constant_restitution", "default pair law")}},
-        {"interactions.pairs[]", "per-pair override: the pair and the law parameters to change",
-         pair_override_schema()},
-        {"initial", "initial configuration", initial_schema()},
-        {"engine", "engine and numerical settings", engine_schema()},
-        {"run", "run schedule", run_schema()},
-        {"run.watchdog", "stops runs that hang or produce NaN (on by default)", watchdog_schema()},
-        {"output", "output settings", output_schema()}};
-}
 
 void apply_override(YAML::Node& root, const std::string& assignment) {
     const auto eq = assignment.find('=');

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "libgran/core/params.hpp"
 #include "libgran/engines/dem/contact_table.hpp"
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/engines/event_driven/engine.hpp"
-#include "libgran/core/params.hpp"
 #include "libgran/run/watchdog.hpp"
 #include "species/species.hpp"
 
@@ -74,12 +74,16 @@ Scene parse_scene(const YAML::Node& root, const std::string& file);
 // Applies one "a.b.0.c=value" override to a YAML document.
 void apply_override(YAML::Node& root, const std::string& assignment);
 
-// Schemas of the scene sections, for `gran list scene`.
+// Schemas of the scene sections, for `gran list scene`, with the prose of docs/scene-reference.md
+// (`gran list --markdown`). Defined in scene_sections.cpp.
 struct SectionDoc {
     std::string name;
     std::string summary;
     Schema schema;
+    std::string description = {};  // Markdown paragraphs; may be empty
 };
 std::vector<SectionDoc> scene_sections();
+// What docs/scene-reference.md says before the sections: units, how errors are reported.
+std::string scene_reference_introduction();
 
 }  // namespace gran
