@@ -10,7 +10,7 @@ DEB_PACKAGES := cmake g++ ninja-build pkg-config libeigen3-dev libboost-dev libh
 GRAN_WERROR ?= $(if $(CI),ON,OFF)
 CMAKE_FLAGS ?=
 
-.PHONY: deps configure build demo test validate bench format sanitize clean reproduce-barrat-trizac-2002 \
+.PHONY: deps configure build demo test docs validate bench format sanitize clean reproduce-barrat-trizac-2002 \
   reproduce-mcnamara-falcon-2005 reproduce-bhateja-2016 tradeoff
 
 deps:
@@ -37,6 +37,12 @@ demo: build
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE validate
+
+# docs/scene-reference.md is generated from the declarations in the code (schemas, summaries,
+# descriptions); Docs.SceneReferenceIsUpToDate fails when the committed copy is stale.
+docs: build
+	$(BUILD_DIR)/gran list --markdown > docs/scene-reference.md.tmp && \
+	  mv docs/scene-reference.md.tmp docs/scene-reference.md || { rm -f docs/scene-reference.md.tmp; exit 1; }
 
 validate: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -L validate

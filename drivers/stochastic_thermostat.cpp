@@ -110,6 +110,20 @@ class StochasticThermostat final : public Driver<D> {
     std::uint64_t count_ = 0;
 };
 
+const char* const kDescription =
+    R"md(
+Homogeneous white-noise heating: every `interval`, every particle receives an independent
+Gaussian velocity kick. Keep `interval` well below the mean free time; the summary reports the
+reschedules per collision per particle.
+
+Noise conventions (`noise`, docs/physics.md): with `equal_velocity_variance` the velocity-kick
+variance per component is strength * interval, whatever the mass (`strength` in velocity^2/time);
+with `equal_force_variance` every particle feels random forces of the same variance, so its kick has
+variance strength * interval / m^2 (`strength` in force^2 * time; lighter particles are shaken
+harder). `remove_drift` subtracts the mass-weighted mean kick (a change of O(1/N) per kick): without
+it the centre of mass performs an undamped random walk whose kinetic energy grows linearly in
+time.)md";
+
 const bool registered = register_plugin<Driver, StochasticThermostat>(
     "stochastic_thermostat",
     "homogeneous white-noise heating: Gaussian velocity kicks to every particle at a fixed "
@@ -126,7 +140,8 @@ const bool registered = register_plugin<Driver, StochasticThermostat>(
      choice("noise", "equal_velocity_variance", {"equal_velocity_variance", "equal_force_variance"},
             "noise amplitude convention (see docs/scene-reference.md)"),
      boolean("remove_drift", "true",
-             "subtract the mass-weighted mean kick so total momentum stays zero")});
+             "subtract the mass-weighted mean kick so total momentum stays zero")},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

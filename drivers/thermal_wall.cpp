@@ -40,13 +40,20 @@ class ThermalWall final : public WallDriver<D>, private WallReflection<D> {
     Rng rng_;
 };
 
+const char* const kDescription =
+    R"md(
+Barrat & Trizac 2002, Sec. III A: the outgoing normal velocity is drawn from the flux
+distribution (m v / T0) exp(-m v^2 / (2 T0)); the tangential velocity is unaffected (the paper's
+rule) or redrawn from the Maxwellian at T0.)md";
+
 const bool registered = register_plugin<Driver, ThermalWall>(
     "thermal_wall",
     "thermal wall: outgoing normal velocity from the flux distribution at temperature T0",
     wall_schema(
         {real("temperature", "", "energy", "wall temperature T0", 0, 1e308, true),
          choice("tangential", "keep", {"keep", "redraw"},
-                "tangential velocity: unaffected (as in Barrat & Trizac 2002) or redrawn at T0")}));
+                "tangential velocity: unaffected (as in Barrat & Trizac 2002) or redrawn at T0")}),
+    wall_description(kDescription, /*contacts=*/false));
 
 }  // namespace
 }  // namespace gran

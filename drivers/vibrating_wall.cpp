@@ -95,6 +95,26 @@ class VibratingWall final : public WallDriver<D> {
     std::string waveform_;
 };
 
+const char* const kDescription =
+    R"md(
+A wall moving with a prescribed waveform (default `side: lower`); contacts are found exactly
+(no missed hit: piecewise-quadratic roots for the parabolas, bracketed monotone Newton for the
+sinusoid, `libgran/core/wall_motion.hpp`). The wall's whole excursion lies inside the box: a lower
+wall moves between 0 and its peak-to-peak excursion (particles live above), an upper one between L
+minus the excursion and L. `phase` 0 puts the wall at its outermost position (a floor at its
+lowest) at t = 0. Besides its hits it reports its peak velocity.
+
+Waveforms: `two_parabolas` is the piston of McNamara & Falcon 2005, Sec. II B,
+z = +-(A/2)((t - t_n)^2/t0^2 - 1), t0 = 1/(4f), peak velocity V = 4 A f; `sinusoid`:
+z = A sin(2 pi f t + phi), peak velocity 2 pi f A; `sawtooth`: as `sawtooth_wall`, with `velocity`
+v0, or `amplitude` A and `frequency` f giving v0 = 2 A f.
+
+On the dem engine a wall needs a position: `sawtooth` there is the real sawtooth
+z = A (2 frac(f t) - 1) (rising at v0 = 2 A f, jumping back once per period), of which the
+event-driven sawtooth is the limit A -> 0; it needs `amplitude` and `frequency`, and reproduces the
+limit when the wall contact is much shorter than the period (v0 t_c << 2 A) and A is much smaller
+than the mean free path (`DemRun.RealSawtoothWallGivesTheTemperatureOfTheEventDrivenSawtoothLimit`).)md";
+
 const bool registered = register_plugin<Driver, VibratingWall>(
     "vibrating_wall",
     "wall of infinite mass moving with a prescribed waveform: two joined parabolas (McNamara & "
@@ -123,7 +143,8 @@ const bool registered = register_plugin<Driver, VibratingWall>(
                          1e308, true))};
             return s;
         }(),
-        "lower"));
+        "lower"),
+    wall_description(kDescription));
 
 }  // namespace
 }  // namespace gran

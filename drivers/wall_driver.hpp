@@ -14,6 +14,28 @@
 
 namespace gran {
 
+// A wall driver's description (docs/scene-reference.md): its own prose, then how its contacts
+// are set (when it has contacts), then what every wall driver shares.
+inline std::string wall_description(const std::string& own, bool contacts = true) {
+    std::string s = own + "\n\n";
+    if (contacts) {
+        s += R"md(
+Its contacts follow `interactions` under the driver's `name` (default: its type), like the
+contacts between species: e.g. `pairs: [{between: [grain, vibrating_wall], alpha: 0.9}]`, or
+`walls: {...}` for every wall. A wall moving with velocity u reflects a particle by
+v_n' - u = -e (v_n - u) on the event-driven engine, e the restitution of that contact's law (a
+constant, or a function of the impact speed |v_n - u|); on the dem engine the wall is a soft
+contact partner of infinite mass.)md";
+        s += "\n\n";
+    }
+    return s + R"md(
+A wall driver puts walls on one or both sides of a bounded axis (`box.periodic` false there); two
+drivers on the same wall are refused; walls no driver claims are static (the wall partner `box`).
+Walls have infinite mass. Each wall driver reports its hits and the momentum it gave (sum of
+m |dv_n|, whole run) per wall under `/drivers/<name>`; the `wall_pressure` observable measures
+rates, impulses and pressure during the measurement.)md";
+}
+
 inline Schema wall_schema(Schema extra, std::string default_side = "both") {
     Schema s{
         choice("axis", "", {"x", "y", "z"}, "wall normal: a bounded axis (box.periodic false)"),

@@ -114,13 +114,22 @@ class AngularVelocityPdf final : public Observable<D> {
     std::vector<PerSpecies> per_;
 };
 
+const char* const kDescription =
+    R"md(
+Angular-velocity distributions of rough particles (some pair with beta != -1; with smooth particles
+only a note is written; Barrat & Trizac 2002, Fig. 7b): per species and component (`z` in 2D; `x`,
+`y`, `z` in 3D), the density of c = w_a / sqrt(T_rot,s / I_s) with the instantaneous rotational
+temperature, error bars from blocks, and the kurtosis per species (3 for a Gaussian) with a
+jackknife error.)md";
+
 const bool registered = register_plugin<Observable, AngularVelocityPdf>(
     "angular_velocity_pdf",
     "angular-velocity distributions of rough particles per species, rescaled by sqrt(T_rot/I), "
     "with kurtosis",
     {integer("bins", "60", "histogram bins", 4, 100000),
      real("range", "6", "sqrt(T_rot/I)", "histograms cover c in [-range, range]", 0, 1e308, true),
-     integer("blocks", "16", "blocks for the error bars of the densities", 2, 1000)});
+     integer("blocks", "16", "blocks for the error bars of the densities", 2, 1000)},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

@@ -65,6 +65,12 @@ class BarycentricHeight final : public Observable<D> {
     Series h_;
 };
 
+const char* const kDescription =
+    R"md(
+`h_cm`: the height of the centre of mass above the mean position of the lower wall of the axis (the
+vibrating base), time-averaged over the measurement; with `rest_height`, `delta_h_cm` = h_cm - h_rest
+(Bhateja et al. 2016, Table II). The study measures h_rest with a run of the settled bed.)md";
+
 const bool registered = register_plugin<Observable, BarycentricHeight>(
     "barycentric_height",
     "height of the centre of mass above the mean base position, h_cm, and its change from rest "
@@ -74,7 +80,8 @@ const bool registered = register_plugin<Observable, BarycentricHeight>(
      optional(real("rest_height", "", "length",
                    "h_cm of the grains at rest on the static base (from a run of its own): "
                    "delta_h_cm = h_cm - rest_height",
-                   -1e308, 1e308))});
+                   -1e308, 1e308))},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

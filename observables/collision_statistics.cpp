@@ -78,9 +78,15 @@ class CollisionStatistics final : public Observable<D> {
     std::vector<Series> pair_increments_;
 };
 
+const char* const kDescription =
+    R"md(
+Collision frequency per particle, per species pair (as seen by one particle of each species), counts
+and wall hits. On the dem engine a collision is a contact that formed, counted in total only (no
+per-pair frequencies).)md";
+
 const bool registered = register_plugin<Observable, CollisionStatistics>(
     "collision_statistics", "collision counts and frequencies per particle and per species pair",
-    {});
+    {}, kDescription);
 
 }  // namespace
 }  // namespace gran

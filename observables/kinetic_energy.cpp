@@ -39,9 +39,14 @@ class KineticEnergy final : public Observable<D> {
     Series measured_;
 };
 
+const char* const kDescription =
+    R"md(
+Kinetic energy per particle (translational + rotational) at every sample of both phases, with the
+cumulative collisions per particle. The one observable that also measures the equilibration.)md";
+
 const bool registered = register_plugin<Observable, KineticEnergy>(
     "kinetic_energy", "total kinetic energy per particle over time (equilibration and measurement)",
-    {});
+    {}, kDescription);
 
 }  // namespace
 }  // namespace gran

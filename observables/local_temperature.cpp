@@ -333,6 +333,26 @@ class LocalTemperature final : public Observable<D> {
     std::vector<std::size_t> samples_in_block_;
 };
 
+const char* const kDescription =
+    R"md(
+Granular temperature of a vibrated bed as Bhateja, Sharma & Singh 2016 define it (Eq. 5):
+T_a = m <c_a^2> / 2 per component (half the usual m <c_a^2>), T = (T_x + T_y (+ T_z)) / d_f, with c
+the fluctuation about the local mean velocity u(z, phase): the mass-weighted mean of the grains in
+the same slab (depth `bin_width`; the paper: one diameter) at the same phase of the drive
+(`phase_bins` per period of the fastest moving wall).
+
+Writes the profiles `z` (slab centres measured from the mean position of the lower wall),
+`T_x_profile`, ... with `_error`, the same about the centre-of-mass velocity `T_x_plain_profile`,
+..., `phi` (volume fraction) and `grains_per_slab`; the scalars `T_x`, `T_y`, (`T_z`), `T` as
+particle averages (each grain counts once), `T_x_volume`, ... `T_volume` as volume averages (the
+mean of T_a(z) over the slabs of the bed, the paper's T = int T dV / V), `T_x_plain`, ... as plain
+averages about the instantaneous centre-of-mass velocity of all grains (no local resolution: the
+layers' collective motion counts as temperature), and, with a moving wall, the same scaled by
+m V_p^2 (`T_z_scaled`, `T_z_volume_scaled`, ...), `peak_velocity` V_p and `W` = V_p^2 / (d g).
+
+The volume average runs over the slabs from the lowest one a grain visited to the highest holding
+at least `min_occupancy` grains on average (the paper does not say where its volume ends).)md";
+
 const bool registered = register_plugin<Observable, LocalTemperature>(
     "local_temperature",
     "granular temperature of a vibrated bed (Bhateja et al. 2016): T_a = m <c_a^2> / 2 about the "
@@ -348,7 +368,8 @@ const bool registered = register_plugin<Observable, LocalTemperature>(
           "top of the bed for the volume average: the highest slab with at least this many grains "
           "on average (the bed starts at the lowest slab a grain visited)",
           0, 1e308),
-     integer("blocks", "16", "blocks of samples for the jackknife error bars", 2, 1000)});
+     integer("blocks", "16", "blocks of samples for the jackknife error bars", 2, 1000)},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

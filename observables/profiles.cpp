@@ -345,6 +345,23 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
     std::size_t samples_ = 0;
 };
 
+const char* const kDescription =
+    R"md(
+Slab profiles along one axis, per species: `number_density`, `packing_fraction`, `T`, `T_x`, `T_y`
+(`T_z`), `T_rot`, and ratios `gamma`, `gamma_x`, ... `gamma_rot` against the reference species; for
+the mixture, `T` and the anisotropy (T_axis - T_across)/(2T), which is A(y) = (T_y - T_x)/(2T) of
+Barrat & Trizac 2002 for axis y. Every profile has an `_error` array (jackknife over blocks) and a
+`middle/...` scalar: the same quantity over the central window (Tables I and II of the paper).
+`eos/P_ideal`, `eos/P_enskog` and `eos/P_ideal_yy`, `eos/P_enskog_yy` (for axis y) give the
+pressure predicted by the equation of state, Eq. (4) of the paper (Eq. (7) for one species), from
+the local densities and the total or axial temperatures, without and with the Enskog collisional
+part (contact values of Henderson / Carnahan–Starling type).
+
+With `pressure` it measures the diagonal pressure tensor `pressure/P_xx`, `P_yy` (, `P_zz`): the
+kinetic part plus the collisional (virial) momentum flux shared among the slabs crossed by each
+collision (Irving–Kirkwood); `..._collisional` holds the latter alone. This subscribes to collisions
+(event_driven engine only; not measured on the dem engine).)md";
+
 const bool registered = register_plugin<Observable, Profiles>(
     "profiles",
     "profiles along an axis (slabs): density, packing fraction, temperatures, anisotropy, "
@@ -359,7 +376,8 @@ const bool registered = register_plugin<Observable, Profiles>(
              "measure the pressure tensor (kinetic + collisional virial); subscribes to collisions "
              "(event_driven engine; not measured on the dem engine)"),
      optional(text("reference_species", "",
-                   "species whose temperature divides the ratios (default: first)"))});
+                   "species whose temperature divides the ratios (default: first)"))},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

@@ -124,6 +124,15 @@ class RestitutionStatistics final : public Observable<D>, public CollisionSink<D
     std::uint64_t total_ = 0, above_one_ = 0;
 };
 
+const char* const kDescription =
+    R"md(
+Per collision, the effective restitution along one component, alpha_1d = -v'_12,a / v_12,a
+(Barrat & Trizac 2002, Eq. (9)): its distribution `alpha_1d/{edges,density,error}`, the tail on
+logarithmic bins from 1 to 1000 (`alpha_1d_tail`, decays as alpha_1d^-2), conditional
+distributions given g_a = |v_12,a| / sqrt(2T) (`conditional/g_k`, attribute `g`), the energy
+restitution |v'_12| / |v_12| (Eq. (10), `energy_restitution`) and `fraction_above_one`. Needs
+binary collision records: refused on the dem engine.)md";
+
 const bool registered = register_plugin<Observable, RestitutionStatistics>(
     "restitution_statistics",
     "effective restitution alpha_1d = -v'_12,a / v_12,a per collision (Eq. 9), its tail, "
@@ -142,7 +151,8 @@ const bool registered = register_plugin<Observable, RestitutionStatistics>(
          return s;
      }(),
      real("conditional_width", "0.1", "",
-          "width of the g_a window of each conditional distribution", 0, 1e308, true)});
+          "width of the g_a window of each conditional distribution", 0, 1e308, true)},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

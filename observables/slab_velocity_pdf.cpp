@@ -133,6 +133,13 @@ class SlabVelocityPdf final : public Observable<D> {
     std::vector<Cell> cells_;
 };
 
+const char* const kDescription =
+    R"md(
+Velocity distributions in chosen slabs: per slab (`slab_k`, attribute `centre`), species and
+component, raw `raw_{edges,density,error}` and rescaled by the slab's time-averaged temperature
+`scaled_{edges,density,error}`, with `temperature` and `kurtosis`. Next to a sawtooth wall the
+normal component is double-peaked (Barrat & Trizac 2002, Fig. 6).)md";
+
 const bool registered = register_plugin<Observable, SlabVelocityPdf>(
     "slab_velocity_pdf",
     "velocity distributions in slabs across the system, raw and rescaled by the slab temperature, "
@@ -148,7 +155,8 @@ const bool registered = register_plugin<Observable, SlabVelocityPdf>(
      integer("bins", "80", "histogram bins", 4, 100000),
      real("range", "8", "thermal velocities",
           "raw histograms cover +-range thermal velocities of the first sample", 0, 1e308, true),
-     integer("blocks", "16", "blocks for the error bars", 2, 1000)});
+     integer("blocks", "16", "blocks for the error bars", 2, 1000)},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

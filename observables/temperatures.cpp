@@ -139,13 +139,19 @@ class Temperatures final : public Observable<D> {
     Series time_;
 };
 
+const char* const kDescription =
+    R"md(
+Per species: T, T_x, T_y (T_z), T_rot (rough particles), Sonine a2, with errors and time series;
+ratios gamma = T_s / T_ref (total, per component, rotational); the mixture temperature.)md";
+
 const bool registered = register_plugin<Observable, Temperatures>(
     "temperatures",
     "per-species and per-component temperatures, rotational temperatures, ratios gamma = "
     "T_s/T_ref, "
     "Sonine a2",
     {optional(text("reference_species", "",
-                   "species whose temperature divides the ratios (default: first)"))});
+                   "species whose temperature divides the ratios (default: first)"))},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

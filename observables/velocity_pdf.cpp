@@ -134,6 +134,11 @@ class VelocityPdf final : public Observable<D> {
     std::vector<PerSpecies> per_;
 };
 
+const char* const kDescription =
+    R"md(
+Per species and component: raw P(v_a) and rescaled P(c_a), c_a = v_a / sqrt(T_{s,a}/m_s), with
+block error bars (consecutive blocks of samples); kurtosis <c^4>/<c^2>^2.)md";
+
 const bool registered = register_plugin<Observable, VelocityPdf>(
     "velocity_pdf",
     "velocity distributions per species and component, raw and rescaled by sqrt(T), with kurtosis",
@@ -145,7 +150,8 @@ const bool registered = register_plugin<Observable, VelocityPdf>(
          "raw histograms cover v in [-raw_range, raw_range] (default: 6 thermal velocities at the "
          "first sample)",
          0, 1e308, true)),
-     integer("blocks", "16", "blocks for the error bars of the densities", 2, 1000)});
+     integer("blocks", "16", "blocks for the error bars of the densities", 2, 1000)},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

@@ -24,6 +24,13 @@ struct ConstantRestitution {
     static bool rotates(const Pair& c) { return c.beta != -1.0; }
 };
 
+const char* const kDescription =
+    R"md(
+The default law of every contact: alpha and beta of Barrat & Trizac 2002, Eq. (1) and Appendix A
+(rough collisions for unequal inertia factors). Against a wall only the normal component is
+reflected, so beta applies to grain-grain collisions. Its nominal restitution is alpha.
+Event-driven engine only (the dem engine needs a soft-contact law).)md";
+
 const bool registered = register_law<ConstantRestitution>(
     "constant_restitution",
     "hard-particle collision with constant normal (alpha) and tangential (beta) restitution",
@@ -32,7 +39,8 @@ const bool registered = register_law<ConstantRestitution>(
      real("beta", "-1", "",
           "tangential restitution coefficient beta_ij of grain-grain collisions (-1 = smooth, no "
           "rotation; 1 = perfectly rough); wall collisions reflect the normal component only",
-          -1, 1)});
+          -1, 1)},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

@@ -47,6 +47,15 @@ struct CundallStrack {
     }
 };
 
+const char* const kDescription =
+    R"md(
+The normal force of `linear_dashpot` and a tangential spring k_t = `tangential_stiffness_ratio`
+k_n with history (one spring per contact, kept across neighbour-list rebuilds) plus the tangential
+dashpot, capped by Coulomb friction; on slip the spring is rescaled to what the cap allows (Luding
+2008). With c_t = 0, a large mu and k_t / m_t = k_n / m_eff (2/7 for equal spheres) a collision
+ends with the perfectly rough g_t' = -g_t. Frictionless, it runs on the event-driven engine as its
+hard limit.)md";
+
 const bool registered = register_law<CundallStrack>(
     "cundall_strack",
     "soft contact: linear spring-dashpot normal force and a tangential spring with history, "
@@ -55,7 +64,8 @@ const bool registered = register_law<CundallStrack>(
         Schema s = soft_contact::common_schema();
         s.push_back(soft_contact::tangential_stiffness_ratio_spec());
         return s;
-    }());
+    }(),
+    kDescription);
 
 }  // namespace
 }  // namespace gran

@@ -71,6 +71,15 @@ struct HertzMindlin {
     }
 };
 
+const char* const kDescription =
+    R"md(
+F_n = k_n delta^(3/2) - gamma_n delta^(1/4) g_n with Tsuji's damping gamma_n = alpha(e)
+sqrt(m_eff k_n) (alpha(e) from the dimensionless contact, so e does not depend on the impact
+speed), and a Mindlin tangential spring k_t delta^(1/2) with history and the Coulomb cap. Its
+contact time scales as v^(-1/5): `contact_time` and the duration the time step is a fraction of
+hold at `reference_speed` (default sqrt(T0 / m) of the lightest species). Frictionless, it runs on
+the event-driven engine as its hard limit.)md";
+
 const bool registered = register_law<HertzMindlin>(
     "hertz_mindlin",
     "soft contact: Hertz normal force with Tsuji damping (e independent of the impact speed), "
@@ -83,7 +92,8 @@ const bool registered = register_law<HertzMindlin>(
                          "a fraction of) holds; 0: sqrt(T0 / m) of the lightest species",
                          0, 1e308));
         return s;
-    }());
+    }(),
+    kDescription);
 
 }  // namespace
 }  // namespace gran

@@ -49,11 +49,20 @@ struct LinearDashpot {
     }
 };
 
+const char* const kDescription =
+    R"md(
+The paper's Eqs. (A5)-(A9): F_n = k_n delta - c_n g_n with c_n from e and the contact's reduced
+mass (the grain's mass against a wall), tangential dashpot F_t = -min(c_t |g_t|, mu |F_n|) t, no
+tangential spring (so c_t = 0 makes friction inactive; the paper gives no c_t). Give `stiffness`
+or `contact_time`, not both; a contact time gives every contact (each with its own reduced mass)
+that duration. Nominal restitution: e. Frictionless, it runs on the event-driven engine as its
+hard limit (instantaneous collisions with restitution e).)md";
+
 const bool registered = register_law<LinearDashpot>(
     "linear_dashpot",
     "soft contact: linear spring-dashpot with the dashpot from e, Coulomb-capped tangential "
     "dashpot, no tangential spring (Bhateja et al. 2016, Eqs. A5-A9)",
-    soft_contact::common_schema());
+    soft_contact::common_schema(), kDescription);
 
 }  // namespace
 }  // namespace gran

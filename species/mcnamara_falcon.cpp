@@ -29,6 +29,13 @@ struct McNamaraFalcon {
     static bool rotates(const Pair& c) { return c.beta != -1.0; }
 };
 
+const char* const kDescription =
+    R"md(
+Normal restitution of the impact speed v = |g_n| (McNamara & Falcon 2005, Eq. 1):
+r(v) = 1 - (1 - r0)(v/v0)^(1/5) for v <= v0 (viscoelastic), r0 (v/v0)^(-1/4) for v >= v0 (plastic).
+Continuous at v0; r -> 1 as v -> 0. The paper: r0 = 0.95, v0 = 0.3 m/s (stainless steel), for
+grains and walls alike. Nominal restitution (for kinetic-theory estimates): r0.)md";
+
 const bool registered = register_law<McNamaraFalcon>(
     "mcnamara_falcon",
     "hard-particle collision with r(v) = 1 - (1 - r0)(v/v0)^(1/5) below v0, r0 (v/v0)^(-1/4) above "
@@ -41,7 +48,8 @@ const bool registered = register_law<McNamaraFalcon>(
           true),
      real("beta", "-1", "",
           "tangential restitution coefficient beta_ij of grain-grain collisions (-1 = smooth)", -1,
-          1)});
+          1)},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

@@ -27,6 +27,13 @@ struct Viscoelastic {
     static bool rotates(const Pair& c) { return c.beta != -1.0; }
 };
 
+const char* const kDescription =
+    R"md(
+Viscoelastic spheres (Schwager & Poeschel 1998; Ramirez et al. 1999): e(v) = 1 - C1 x + C2 x^2,
+x = gamma v^(1/5), C1 = 1.15345, C2 = (3/5) C1^2. Accurate to 4e-3 for x <= 0.3 (e >= 0.72);
+beyond the series' minimum x = 0.7225 (e = 7/12) e is held constant so it never rises with speed.
+Nominal restitution (for kinetic-theory estimates): 1.)md";
+
 const bool registered = register_law<Viscoelastic>(
     "viscoelastic",
     "hard-particle collision with the viscoelastic restitution e(v) = 1 - C1 x + C2 x^2, x = gamma "
@@ -37,7 +44,8 @@ const bool registered = register_law<Viscoelastic>(
           0, 1e308),
      real("beta", "-1", "",
           "tangential restitution coefficient beta_ij of grain-grain collisions (-1 = smooth)", -1,
-          1)});
+          1)},
+    kDescription);
 
 }  // namespace
 }  // namespace gran

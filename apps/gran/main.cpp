@@ -11,14 +11,11 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
-#include "libgran/plugins/driver.hpp"
-#include "libgran/plugins/engine.hpp"
-#include "libgran/plugins/law.hpp"
-#include "libgran/plugins/observable.hpp"
-#include "libgran/plugins/placement.hpp"
 #include "libgran/run/run.hpp"
 #include "libgran/scene/scene.hpp"
+#include "libgran/scene/scene_reference.hpp"
 #include "libgran/study/study.hpp"
 #include "libgran/study/tradeoff_ladder.hpp"
 
@@ -30,49 +27,34 @@ extern "C" void on_signal(int) {
     g_interrupt.store(true);
 }
 
-void print_schema(const gran::Schema& schema) {
-    for (const auto& s : schema) {
-        std::string def = s.default_value.empty() ? (s.optional ? "optional" : "required")
-                                                  : "default " + s.default_value;
-        std::cout << fmt::format("    {:<18} {} ({})\n", s.name, gran::describe(s), def);
-        std::cout << fmt::format("    {:<18}   {}\n", "", s.doc);
-    }
-}
+// The last section of docs/scene-reference.md: the commands, which this file defines.
+const char* const kCommandLineReference =
+    R"md(
+## Command line
 
-template <class Plugins>
-void print_plugins(const char* title, const Plugins& plugins) {
-    std::cout << title << ":\n";
-    for (const auto* p : plugins) {
-        std::cout << "  " << p->name << ": " << p->summary << "\n";
-        print_schema(p->schema);
-    }
-}
+`gran run SCENE.yaml [-o OUT.h5] [--set key=value ...] [-q] [--log-level LEVEL]`: `--set` takes a
+dotted path with list indices, e.g. `--set species.1.mass=10 --set drivers.0.strength=0.1`. Output
+defaults to `results/<scene name>.h5`; the summary is written beside it as `<name>.summary.yaml`. The
+result is written to `OUT.h5.part` and renamed when complete, so a failed run never replaces an
+existing result.
 
-int cmd_list(const std::string& what) {
-    const std::vector<std::string> kinds{"scene", "laws", "engines", "drivers", "observables",
-                                         "placements"};
-    if (!what.empty() && std::find(kinds.begin(), kinds.end(), what) == kinds.end()) {
-        std::cerr << "gran list: unknown category '" << what
-                  << "'; expected scene, laws, engines, drivers, observables or placements\n";
+`gran check SCENE.yaml [--set ...]`: every check `gran run` makes (the contacts, what the engine can
+do, the drivers' and observables' cross-references, the initial placement), without running.
+
+`gran study STUDY.yaml [-o OUTDIR] [-j JOBS]`: runs a study (one scene swept over points, grids,
+zipped lists and replicas) several runs at a time, merges them into `OUTDIR/study.h5` with a summary
+table `study.csv` and power-law fits; a second invocation reuses every complete run. See
+[studies.md](studies.md).)md";
+
+int cmd_list(const std::string& what, bool markdown) {
+    try {
+        std::cout << gran::scene_reference(
+            what, markdown ? gran::ReferenceFormat::markdown : gran::ReferenceFormat::text);
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "gran list: " << e.what() << "\n";
         return 2;
     }
-    const auto wanted = [&](const char* kind) { return what.empty() || what == kind; };
-    if (wanted("scene")) {
-        std::cout << "scene sections:\n";
-        for (const auto& sec : gran::scene_sections()) {
-            std::cout << "  " << sec.name << ": " << sec.summary << "\n";
-            print_schema(sec.schema);
-        }
-    }
-    if (wanted("laws"))
-        print_plugins("laws (interactions.law)", gran::LawRegistry::instance().all());
-    if (wanted("engines"))
-        print_plugins("engines (engine.type)", gran::EngineRegistry::instance().all());
-    if (wanted("drivers")) print_plugins("drivers", gran::DriverRegistry::instance().all());
-    if (wanted("observables"))
-        print_plugins("observables", gran::ObservableRegistry::instance().all());
-    if (wanted("placements"))
-        print_plugins("placements (initial.placement)", gran::PlacementRegistry::instance().all());
+    if (markdown && what.empty()) std::cout << kCommandLineReference << "\n";
     return 0;
 }
 
@@ -273,14 +255,18 @@ int main(int argc, char** argv) {
     auto* list =
         app.add_subcommand("list", "document scene sections and plugins with their parameters");
     std::string what;
+    bool markdown = false;
     list->add_option("what", what,
                      "scene, laws, engines, drivers, observables or placements (default: all)");
+    list->add_flag(
+        "--markdown", markdown,
+        "print Markdown: with no category, the page docs/scene-reference.md (make docs)");
 
     CLI11_PARSE(app, argc, argv);
     spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::from_str(log_level));
     spdlog::set_pattern("[%H:%M:%S] [%^%l%$] %v");
 
-    if (list->parsed()) return cmd_list(what);
+    if (list->parsed()) return cmd_list(what, markdown);
 
     if (study->parsed()) return cmd_study(study_file, study_out, jobs, quiet);
 

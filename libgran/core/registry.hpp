@@ -19,6 +19,9 @@ struct PluginInfo {
     std::string name;     // the name YAML uses (`type: <name>`, `law: <name>`)
     std::string summary;  // one line
     Schema schema;        // its keys
+    // What the summary and the keys' docs leave out (conventions, what is refused, what is
+    // written): Markdown paragraphs printed by `gran list --markdown`; may be empty.
+    std::string description = {};
 };
 
 template <class Entry>
@@ -74,11 +77,13 @@ struct DimensionalPlugin : PluginInfo {
 // Registers Impl<2> and Impl<3> (each constructible from (const Params&, const SceneInfo&)) in
 // Registry<DimensionalPlugin<Base>>.
 template <template <int> class Base, template <int> class Impl>
-bool register_plugin(std::string name, std::string summary, Schema schema) {
+bool register_plugin(std::string name, std::string summary, Schema schema,
+                     std::string description = {}) {
     DimensionalPlugin<Base> p;
     p.name = std::move(name);
     p.summary = std::move(summary);
     p.schema = std::move(schema);
+    p.description = std::move(description);
     p.make2 = [](const Params& prm, const SceneInfo& s) -> std::unique_ptr<Base<2>> {
         return std::make_unique<Impl<2>>(prm, s);
     };

@@ -65,7 +65,8 @@ std::shared_ptr<const LawPlugin::SoftContact> soft_contact_form() {
 
 // The LawPlugin of L (not registered), with its engine loops registered under `name`.
 template <InteractionLaw L>
-LawPlugin make_law_plugin(std::string name, std::string summary, Schema schema) {
+LawPlugin make_law_plugin(std::string name, std::string summary, Schema schema,
+                          std::string description = {}) {
     static_assert(HardSphereLaw<L> || SoftContactLaw<L>,
                   "a law needs a hard-sphere form, a soft-contact form, or both");
     using law_detail::at;
@@ -73,6 +74,7 @@ LawPlugin make_law_plugin(std::string name, std::string summary, Schema schema) 
     p.name = std::move(name);
     p.summary = std::move(summary);
     p.schema = std::move(schema);
+    p.description = std::move(description);
     p.make_table = [](std::size_t n) -> std::unique_ptr<LawTableBase> {
         auto t = std::make_unique<LawTable<L>>();
         t->contacts.resize(n);
@@ -101,9 +103,10 @@ LawPlugin make_law_plugin(std::string name, std::string summary, Schema schema) 
 }
 
 template <InteractionLaw L>
-bool register_law(std::string name, std::string summary, Schema schema) {
-    return LawRegistry::instance().add(
-        make_law_plugin<L>(std::move(name), std::move(summary), std::move(schema)));
+bool register_law(std::string name, std::string summary, Schema schema,
+                  std::string description = {}) {
+    return LawRegistry::instance().add(make_law_plugin<L>(
+        std::move(name), std::move(summary), std::move(schema), std::move(description)));
 }
 
 }  // namespace gran

@@ -44,4 +44,11 @@ class Driver {
 
 using DriverRegistry = Registry<DimensionalPlugin<Driver>>;
 
+// Introduction of the drivers in docs/scene-reference.md (`gran list --markdown`).
+inline constexpr const char* kDriversDescription =
+    R"md(
+Each entry of the scene's `drivers` list is `{type: <name>, ...parameters}`; an optional `name`
+sets the result group name (default: the type) and, for a wall driver, the name of its walls in
+`interactions`.)md";
+
 }  // namespace gran

@@ -97,4 +97,11 @@ struct EnginePlugin : PluginInfo {
 
 using EngineRegistry = Registry<EnginePlugin>;
 
+// Introduction of the engines in docs/scene-reference.md (`gran list --markdown`).
+inline constexpr const char* kEnginesDescription =
+    R"md(
+`engine.type` chooses the engine; the rest of the `engine` section are its numerical settings
+(contact physics is in `interactions`). The same scene runs on either engine where the physics
+allows: a frictionless soft-contact law runs on `event_driven` as its hard limit.)md";
+
 }  // namespace gran

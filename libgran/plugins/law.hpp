@@ -109,6 +109,17 @@ struct LawPlugin : PluginInfo {
 
 using LawRegistry = Registry<LawPlugin>;
 
+// Introduction of the laws in docs/scene-reference.md (`gran list --markdown`).
+inline constexpr const char* kLawsDescription =
+    R"md(
+`interactions.law` chooses the law of every contact, `interactions.walls.law` that of every
+grain-wall contact and `interactions.pairs[].law` that of one contact; the law's keys are keys of
+the same map. Hard-particle laws run on the `event_driven` engine; soft-contact laws run on the
+`dem` engine and, frictionless, on the `event_driven` engine too as their hard limit
+(instantaneous collisions with the same restitution). Kinetic-theory estimates that need a single
+restitution (the Enskog pressure of `profiles`) use the law's nominal value, given with each law
+below. A law is one file in `species/` (docs/architecture.md).)md";
+
 template <class L>
 concept InteractionLaw =
     std::is_trivially_copyable_v<typename L::Pair> &&

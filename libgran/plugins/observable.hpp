@@ -55,6 +55,15 @@ Vec<D> centre_of_mass_velocity(const Particles<D>& p, const SpeciesTable& table)
 
 using ObservableRegistry = Registry<DimensionalPlugin<Observable>>;
 
+// Introduction of the observables in docs/scene-reference.md (`gran list --markdown`).
+inline constexpr const char* kObservablesDescription =
+    R"md(
+Each entry of the scene's `observables` list is `{type: <name>, ...parameters}`; an optional
+`name` sets the result group `/observables/<name>` (default: the type). Scalars are datasets with
+`error` and `unit` attributes, and `n_eff` (effectively independent samples), `tau_int` (integrated
+autocorrelation time in samples), `samples` and `converged` (0: no blocking plateau, the error is a
+lower bound); the summary gives `{value, error, unit, n_eff}` (docs/physics.md, "Error bars").)md";
+
 
 inline const char* component_name(int a) {
     return a == 0 ? "x" : (a == 1 ? "y" : "z");

@@ -27,4 +27,11 @@ struct PlacementPlugin : PluginInfo {
 
 using PlacementRegistry = Registry<PlacementPlugin>;
 
+// Introduction of the placements in docs/scene-reference.md (`gran list --markdown`).
+inline constexpr const char* kPlacementsDescription =
+    R"md(
+`initial.placement` chooses how the particles are put in the box; velocities are then drawn from
+the Maxwellian at `initial.temperature` with zero total momentum (and angular velocities too on
+the event-driven engine when some contact needs them).)md";
+
 }  // namespace gran

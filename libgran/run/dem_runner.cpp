@@ -298,6 +298,23 @@ const bool registered = EngineRegistry::instance().add([] {
              "impact speed of the isolated test collisions reported with the run; 0: sqrt(T0 / "
              "m) of the lightest species",
              0, 1e308)};
+    p.description = R"md(
+Time-stepped soft spheres with friction and rotation (Bhateja, Sharma & Singh 2016, Appendix):
+velocity Verlet, Verlet neighbour lists, the contact forces of a soft-contact law (one law for
+every contact: `linear_dashpot`, `cundall_strack`, `hertz_mindlin`). The schedule must be in time
+(`run.unit: time`). The time step is `dt`, or `dt_fraction` times the shortest contact duration
+over grain-grain and grain-wall contacts; above a fifth of it is refused (velocity Verlet needs
+5 steps per contact). Walls need a position: a `vibrating_wall` `sawtooth` is the real sawtooth
+ramp; the sawtooth limit, thermal walls and the thermostat's kicks are refused with the reason, as
+are observables that need binary collision records (`restitution_statistics`; `profiles` skips its
+collisional pressure). A collision counted by `collision_statistics` is a contact that formed.
+Rough grains start at rest in rotation.
+
+A dem run reports under `/performance`: `dt`, `dt_over_tc` (the largest over the contact kinds),
+`steps`, `particle_steps_per_second`, contacts formed, `max_overlap` (largest delta / sigma), and
+`isolated_collisions/<species>-<species>` and `<species>-<wall partner>`: the restitution and
+contact time an isolated head-on collision achieves on the engine itself at this dt (at
+`probe_speed`), next to the requested e and the closed-form t_c.)md";
     p.binary_collisions = false;
     // Rough grains start at rest in rotation (the beds of Bhateja et al. 2016 start from rest).
     p.thermal_initial_spin = false;

@@ -217,6 +217,16 @@ const bool registered = EngineRegistry::instance().add([] {
                        "inelastic-collapse guard: TC model (collisions within tc of a previous "
                        "one are elastic)"),
                 real("tc", "1e-6", "time", "TC-model time window", 0, 1e308)};
+    p.description = R"md(
+Hard particles, exact between events (per-particle clocks, cell lists, one pending event per
+particle): collisions are instantaneous, with the restitution of the contact's law (a
+hard-particle law, or a soft-contact law's hard limit when frictionless). Gravity makes free flight
+parabolic; moving walls are met exactly; a sawtooth ramp is taken in its limit A -> 0. The
+`collapse_guard: tc` is the TC model (Luding & McNamara 1998): a collision within `tc` of a
+previous collision of either partner (or a wall hit within `tc` of one) is elastic; such
+collisions are counted in `/performance/tc_guard_collisions`. A particle resting on a floor under
+gravity makes micro-bounces of period 2 tc (docs/physics.md); the watchdog stops runs made of
+them.)md";
     p.binary_collisions = true;
     p.check = check_event_driven;
     p.make2 = [](const Scene& s, DriverList<2>& d, ObservableList<2>& o) {

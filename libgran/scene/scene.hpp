@@ -70,12 +70,16 @@ void apply_override(YAML::Node& root, const std::string& assignment);
 // The SceneInfo of plugin `index` of a list.
 SceneInfo plugin_info(const Scene& scene, std::size_t index);
 
-// Schemas of the scene sections, for `gran list scene`.
+// Schemas of the scene sections, for `gran list scene`, with the prose of docs/scene-reference.md
+// (`gran list --markdown`). Defined in schemas.cpp.
 struct SectionDoc {
     std::string name;
     std::string summary;
     Schema schema;
+    std::string description = {};  // Markdown paragraphs; may be empty
 };
 std::vector<SectionDoc> scene_sections();
+// What docs/scene-reference.md says before the sections: units, how errors are reported.
+std::string scene_reference_introduction();
 
 }  // namespace gran

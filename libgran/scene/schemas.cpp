@@ -127,25 +127,114 @@ Schema output_schema() {
         "trajectory frames written under /particles (equally spaced in the measurement)", 0, 1e6)};
 }
 
+namespace {
+
+const char* const kBox =
+    R"md(
+Give exactly one of `lengths` or `packing_fraction`. Refused: a packing fraction above the
+densest packing (0.9069 disks, 0.7405 spheres); a periodic edge shorter than twice the largest
+diameter; a bounded edge shorter than the largest diameter. The walls of bounded axes that no wall
+driver claims are static walls; in `interactions` they are the wall partner `box`.)md";
+
+const char* const kInteractions =
+    R"md(
+The single home of contact physics, for both engines. The default law and its keys apply to every
+contact: between two species, and between a species and a wall (a wall is a contact partner of
+infinite mass that does not rotate). `walls` changes the keys (or the law) of every grain-wall
+contact; `pairs` entries change single contacts. A wall partner is named by the wall driver that
+puts it there (the driver's `name`, by default its type), or `box` for the walls of bounded axes
+that no driver claims. Keys a `walls` or `pairs` entry leaves out take the values of the level
+above when it has the same law (a wall pair: `walls`, else the defaults), else the law's own
+defaults; the default, `constant_restitution` with its defaults, makes every contact elastic and
+smooth. Angular velocities exist only when some contact needs them (a tangential restitution
+beta != -1, or friction). Several hard-particle laws may be mixed per contact on the event-driven
+engine (one indirect call per collision); the dem engine takes one law for every contact.
+
+```yaml
+interactions:
+  law: linear_dashpot
+  restitution: 0.9
+  stiffness: 2.0e+5
+  walls: {friction: 0.4}
+  pairs:
+    - {between: [heavy, light], restitution: 0.8}
+    - {between: [heavy, box], restitution: 1}
+```
+
+Keys that lived elsewhere before (`engine.contact_law`, `engine.stiffness`, `engine.friction`,
+..., a wall driver's `restitution`, `restitution_law`, `r0`, `v0`, `gamma`) are refused with their
+new spelling.)md";
+
+const char* const kPairs =
+    R"md(
+Each entry of `interactions.pairs` names the contact (`between`: two species, or a species and a
+wall partner), optionally its own `law`, and that law's keys. A contact given twice, a partner that
+does not exist (the message lists the known ones) and a contact between two walls are refused.)md";
+
+const char* const kInitial =
+    R"md(
+`placement` is one of the placements below (`gran list placements`). Random insertion fails (with
+a message) above its jamming limit (about 0.54 for disks, 0.38 for spheres); use `lattice` or
+`close_packed` there.)md";
+
+const char* const kEngine =
+    R"md(
+`type` chooses the engine (`gran list engines`); the other keys of the section are that engine's
+numerical settings, listed with it below. A key of the other engine is refused (e.g. `dt_fraction`
+on `event_driven`).)md";
+
+const char* const kRun =
+    R"md(
+`equilibration`, `measurement` and `sample_interval` are in `unit`; the dem engine schedules by
+time.)md";
+
+const char* const kWatchdog =
+    R"md(
+Stops a run that would hang or silently produce NaN, with an error naming what happened, the
+simulated time and what to change; the result is written with what was measured
+(`/performance/completed = 0`, the message in the `/performance` attribute `watchdog_stop`, summary
+`status: stopped by the watchdog` and `error`), and `gran run` exits with status 1. Checks run
+between chunks of work, never per event (libgran/run/watchdog.hpp). On both engines positions,
+velocities, angular velocities and the kinetic energy are checked to be finite at every sample and
+every window.)md";
+
+}  // namespace
+
 std::vector<SectionDoc> scene_sections() {
     return {
         {"scene", "top-level keys of a scene file", top_schema()},
-        {"box", "box geometry: give lengths, or packing_fraction (and aspect)", box_schema()},
+        {"box", "box geometry: give lengths, or packing_fraction (and aspect)", box_schema(), kBox},
         {"species", "one entry per species", species_schema()},
         {"interactions",
          "the contact law of every contact and its keys (`gran list laws`), `walls` for every "
          "grain-wall contact, `pairs` for single contacts",
-         interactions_schema()},
+         interactions_schema(), kInteractions},
         {"interactions.pairs[]",
          "one contact: two species, or a species and a wall partner (a wall driver's name, or "
          "`box`), and the law keys to change",
-         pair_override_schema()},
-        {"initial", "initial configuration", initial_schema()},
-        {"engine", "engine type; its numerical settings are listed by `gran list engines`",
-         {text("type", "event_driven", "simulation engine (`gran list engines`)")}},
-        {"run", "run schedule", run_schema()},
-        {"run.watchdog", "stops runs that hang or produce NaN (on by default)", watchdog_schema()},
+         pair_override_schema(), kPairs},
+        {"initial", "initial configuration", initial_schema(), kInitial},
+        {"engine", "engine type; its numerical settings are listed with each engine",
+         {text("type", "event_driven", "simulation engine (`gran list engines`)")}, kEngine},
+        {"run", "run schedule", run_schema(), kRun},
+        {"run.watchdog", "stops runs that hang or produce NaN (on by default)", watchdog_schema(),
+         kWatchdog},
         {"output", "output settings", output_schema()}};
+}
+
+std::string scene_reference_introduction() {
+    return R"md(
+A scene is one YAML file. Every key is checked: unknown keys, wrong types, out-of-range values and
+inconsistent combinations stop the run with `file:line:column: key.path: what was expected`;
+`gran check SCENE.yaml` makes every check `gran run` makes, the initial placement included,
+without running (and without building an engine).
+
+Units are reduced: lengths, masses and temperatures (energies, k_B = 1) are whatever the scene uses;
+time follows as length * sqrt(mass/energy). A typical choice is diameter 1, mass 1, T0 = 1. With
+`units: SI` the numbers are read as m, kg, s, Hz and J instead (no number is converted).
+
+`gran list [scene|laws|engines|drivers|observables|placements]` prints the keys below as plain
+text.)md";
 }
 
 }  // namespace gran
