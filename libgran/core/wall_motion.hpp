@@ -17,7 +17,8 @@
 //    position(t) = z(t + phase / omega), omega = 2 pi f.
 //  - sawtooth: Barrat & Trizac 2002's virtual vibrating wall (the limit A -> 0, A f fixed): the
 //    position stays 0 and every particle meets a wall moving into the gas with speed v0, so
-//    velocity() reports v0 and wall_velocity() reports inward * v0, as species/wall_rules.hpp.
+//    velocity() reports v0 and wall_velocity() reports inward * v0, as the wall collision rule
+//    (engines/event_driven/collision_rules.hpp) uses.
 //  - sawtooth_ramp: the real wall of which `sawtooth` is the limit, for the soft-sphere engine
 //    (which needs a wall position): z = s A (2 frac(f t + phase / 2 pi) - 1), moving at the
 //    constant speed v0 = 2 A f into the gas (s = sign of v0) and jumping back once per period.

@@ -13,8 +13,8 @@
 #include <cmath>
 
 #include "libgran/engines/event_driven/engine.hpp"
-#include "libgran/scene/placement.hpp"
 #include "libgran/run/run.hpp"
+#include "libgran/scene/placement.hpp"
 #include "libgran/scene/scene.hpp"
 #include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
@@ -117,8 +117,8 @@ TEST(SizeRatioExtremes, DisksWithSizeRatio10NeverOverlapAndConserveEnergy) {
     check_size_ratio_ten<2>(20, 2000, 102.0, 200000);  // phi 0.3, 10 cells of 10.2 per axis
 }
 TEST(SizeRatioExtremes, SpheresWithSizeRatio10NeverOverlapAndConserveEnergy) {
-    // phi 0.074, 4 cells of 10 per axis: with 3 cells (before the fix in build_cells) pairs in
-    // cells 0 and 2 met through the image the scan had not used: missed collisions.
+    // phi 0.074, 4 cells of 10 per axis: with 3 cells (before the fix in CellList::size_grid)
+    // pairs in cells 0 and 2 met through the image the scan had not used: missed collisions.
     check_size_ratio_ten<3>(8, 1000, 40.0, 60000);
 }
 TEST(SizeRatioExtremes, PeriodicAxesShorterThanFourLargestDiametersMissNoCollision) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libgran/engines/cell_grid.hpp"
+
 namespace gran {
 
 template <int D>
@@ -16,7 +18,7 @@ void DemNeighbourList<D>::configure(const Box<D>& box, std::vector<double> cutof
         widest_ = std::max(widest_, c);
         c *= c;
     }
-    cap_ = std::max<std::size_t>(std::size_t(1) << 16, 8 * n_particles);
+    cap_ = cell_cap(n_particles);
     min_image_ = false;
     for (std::size_t a = 0; a < std::size_t(D); ++a) {
         periodic_[a] = box.periodic[a];
@@ -84,18 +86,8 @@ void DemNeighbourList<D>::grid(const std::vector<Vec<D>>& r) {
         }
         span[a] = hi[a] - lo_[a];
     }
-    // At most cap_ cells: coarsen the axis with the most cells (periodic ones keep >= 3).
-    for (;;) {
-        std::size_t total = 1;
-        for (std::size_t a = 0; a < std::size_t(D); ++a) total *= std::size_t(ncell_[a]);
-        if (total <= cap_) break;
-        std::size_t a_max = 0;
-        for (std::size_t a = 1; a < std::size_t(D); ++a) {
-            if (ncell_[a] > ncell_[a_max]) a_max = a;
-        }
-        if (ncell_[a_max] <= 3) break;
-        ncell_[a_max] = std::max(ncell_[a_max] / 2, periodic_[a_max] ? 3 : 1);
-    }
+    // At most cap_ cells (periodic axes keep >= 3).
+    coarsen_cells<D>(ncell_, periodic_, cap_, 3, 1);
     std::int32_t stride = 1;
     for (std::size_t a = 0; a < std::size_t(D); ++a) {
         stride_[a] = stride;

@@ -2,12 +2,15 @@
 // Event-driven molecular dynamics of inelastic hard disks (D = 2) and spheres (D = 3), one
 // templated code path. Design (see docs/architecture.md):
 //  - structure-of-arrays particle state with per-particle clocks (lazy position updates);
-//  - cell list (cells at least one largest diameter wide) with cell-crossing events; after a
-//    crossing only the newly adjacent layer of cells is scanned (the earlier best collision is
-//    kept);
-//  - one pending event per particle, validated lazily with per-particle collision counters;
-//  - indexed 4-ary heap keyed by particle (O(log N) per event), no allocation per event;
-//  - neighbour cells computed from cell coordinates (a per-cell table falls out of cache at 1e5);
+//  - a cell list (cell_list.hpp: cells at least one largest diameter wide) with cell-crossing
+//    events; after a crossing only the newly adjacent layer of cells is scanned (the earlier best
+//    collision is kept);
+//  - one pending event per particle, validated lazily with per-particle collision counters, in an
+//    indexed 4-ary heap (scheduler.hpp: O(log N) per event, no allocation per event);
+//  - the event loop pops, validates and dispatches; the engine itself holds the physics: free
+//    flight, collision, crossing and wall times, and what each event does; the loop and the two
+//    events that read the contact law (collisions, wall hits) are templated on the law
+//    (law_loop.hpp) and instantiated by the law's registration;
 //  - round-off-proof detection: an approaching pair that already overlaps collides now, a receding
 //    one is ignored, and no event is ever scheduled before the current time;
 //  - the TC model against inelastic collapse (Luding & McNamara, Granular Matter 1, 113 (1998)):
@@ -17,17 +20,18 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <vector>
-
 #include <string>
+#include <vector>
 
 #include "libgran/core/box.hpp"
 #include "libgran/core/collision_record.hpp"
 #include "libgran/core/particles.hpp"
 #include "libgran/core/species.hpp"
 #include "libgran/core/wall_motion.hpp"
+#include "libgran/engines/event_driven/cell_list.hpp"
 #include "libgran/engines/event_driven/collision_rules.hpp"
-#include "libgran/engines/event_driven/event_queue.hpp"
+#include "libgran/engines/event_driven/event_times.hpp"
+#include "libgran/engines/event_driven/scheduler.hpp"
 #include "libgran/plugins/law.hpp"
 #include "libgran/plugins/wall.hpp"
 
@@ -54,24 +58,6 @@ struct EngineCounters {
     std::uint64_t tc_wall_hits = 0;                 // wall hits made elastic by the TC guard
     std::uint64_t wall_lifts = 0;  // hits whose rebound was raised to the resting speed g tc
 };
-
-// Collision time of two spheres at separation dr, relative velocity dv, contact distance sigma.
-// Returns 0 for an approaching overlapping pair (round-off) and +inf for receding or missing pairs,
-// or for pairs that cannot collide before `bound`. Stable root: dt = c / (-b + sqrt(b^2 - dv^2 c))
-// avoids cancellation; since that root is >= c / (-2b), pairs beyond the bound are rejected
-// before the square root (the common case in a neighbour scan).
-template <int D>
-inline double pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sigma,
-                                  double bound = kInf) {
-    const double b = dr.dot(dv);
-    if (b >= 0.0) return kInf;
-    const double c = dr.squaredNorm() - sigma * sigma;
-    if (c <= 0.0) return 0.0;
-    if (c > -2.0 * b * bound) return kInf;
-    const double disc = b * b - dv.squaredNorm() * c;
-    if (disc <= 0.0) return kInf;
-    return c / (-b + std::sqrt(disc));
-}
 
 template <int D>
 class EventDrivenEngine;
@@ -106,7 +92,7 @@ class EventDrivenEngine {
                  std::uint64_t event_limit = UINT64_MAX) {
         return Stop((this->*loop_)(t_limit, collision_limit, interrupt, event_limit));
     }
-    // The event loop of law L (law_loop.hpp), returning a Stop.
+    // The event loop of law L (law_loop.hpp); returns a Stop.
     template <class L>
     int advance_with(double t_limit, std::uint64_t collision_limit,
                      const std::atomic<bool>* interrupt, std::uint64_t event_limit);
@@ -155,8 +141,6 @@ class EventDrivenEngine {
     const std::array<std::uint64_t, 2 * D>& wall_hits() const { return wall_hit_count_; }
 
   private:
-    enum Kind : std::uint8_t { kNone, kCollision, kCell, kWall };
-
     void move(std::uint32_t i) {
         const double dt = now_ - p_.t[i];
         if (gravity_) {
@@ -168,36 +152,47 @@ class EventDrivenEngine {
         }
         p_.t[i] = now_;
     }
+    // Prediction: i's next event (i must be at now_), from a scan of its neighbour cells for the
+    // earliest collision, then its cell crossings and walls (schedule). In the event loop
+    // repredict() also moves i in the queue.
     void predict(std::uint32_t i);
+    void repredict(std::uint32_t i) {
+        predict(i);
+        events_.commit(i);
+    }
     void predict_after_crossing(std::uint32_t i, int axis, int dir);
-    // Writes up to 3^D cell ids to out (room for 3^D needed), returns how many are neighbours.
-    int neighbour_cells(std::uint32_t i, std::int32_t* out, int layer_axis = -1,
-                        int layer_dir = 0) const;
+    // Earliest collision of i with the candidates of the given cells, if before best.
     void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
-                    std::int32_t& partner) const;
+                    std::int32_t& partner);
     template <bool Gravity>
     void scan_gathered(std::uint32_t i, std::size_t n, double& best, std::int32_t& partner) const;
-    // Periodic axes with one cell (shorter than 4 largest diameters): the minimum image is not
-    // enough, a pair may meet through another image before either particle re-predicts (at its
-    // next wrap, after travelling at most one period). The scan then tries the images k L,
-    // |k| <= 2, along those axes (image_offsets_, empty when no axis needs them).
+    // One-cell periodic axes: every image of each candidate (CellList::image_offsets()).
     void scan_gathered_images(std::uint32_t i, std::size_t n, double& best,
                               std::int32_t& partner) const;
-    std::vector<Vec<D>> image_offsets_;
-    double axis_event(std::uint32_t i, int a, double best, std::uint8_t& kind, int& code) const;
+    double axis_event(std::uint32_t i, int a, double best, EventKind& kind, int& code) const;
     void schedule(std::uint32_t i, double collision, std::int32_t partner);
+    // Events: what each does to the state, then the re-prediction of the particles involved.
     template <class L>
     void collide(std::uint32_t i, std::uint32_t j);
+    void record_before(CollisionRecord<D>& rec, std::uint32_t i, std::uint32_t j, const Vec<D>& n,
+                       double alpha, double beta, double contact) const;
+    void notify(CollisionRecord<D>& rec, std::uint32_t i, std::uint32_t j, double impulse);
+    void copy_velocities(std::uint32_t i, std::uint32_t j, Vec<D>& vi, Vec<D>& vj, AngVec<D>& wi,
+                         AngVec<D>& wj) const {
+        vi = p_.v[i];
+        vj = p_.v[j];
+        if (rough_) {
+            wi = p_.w[i];
+            wj = p_.w[j];
+        }
+    }
     void cross_cell(std::uint32_t i, int code);
     template <class L>
     void hit_wall(std::uint32_t i, int code);
     // After a wall hit's reflection: the resting-contact lift, the wall's impulse and hit count,
     // and the next event of i.
     void finish_wall_hit(std::uint32_t i, int code, double u, double t_abs, double before);
-    void build_cells();
-    void cell_insert(std::uint32_t i, std::int32_t c);
-    void cell_remove(std::uint32_t i);
-    std::int32_t cell_id(const std::array<std::int32_t, D>& cc) const;
+    double largest_diameter() const;
 
     Box<D> box_;
     Particles<D> p_;
@@ -223,32 +218,8 @@ class EventDrivenEngine {
     // per particle
     std::vector<std::uint32_t> count_;  // collision counter (velocity changes)
     std::vector<double> last_collision_;
-    std::vector<double> ev_time_;
-    std::vector<std::int32_t> ev_partner_;
-    std::vector<std::uint32_t> ev_count_;     // collision partner's counter when predicted
-    std::vector<double> coll_time_;           // earliest predicted collision (absolute time)
-    std::vector<std::int32_t> coll_partner_;  // its partner (-1: none), kept across cell crossings
-    std::vector<std::uint8_t> ev_kind_;
-    EventQueue queue_;
-
-    // cell list
-    std::array<std::int32_t, D> ncell_{};
-    Vec<D> cell_width_;
-    std::vector<std::array<std::int32_t, D>> cc_;
-    // Cell contents, two layouts chosen by occupancy in build_cells():
-    //  - dense (>= 0.25 particles per cell): fixed-capacity slots of ids plus a count per cell. A
-    //    scan gathers the ids of all neighbouring cells without branches (whole slots are copied,
-    //    the write position advances by the count), so the unpredictable "how many particles in
-    //    this cell" branch is not paid per cell (+18% at phi 0.2-0.3 in 3D);
-    //  - dilute: doubly linked lists (a few bytes per mostly empty cell; slots cost -30 to -45% at
-    //    N = 1e5, phi = 0.1, through cache misses).
-    void grow_cells();
-    bool slots_ = false;
-    std::vector<std::int32_t> cell_of_, slot_, cell_count_;
-    std::vector<std::uint32_t> cell_ids_;
-    std::int32_t cell_capacity_ = 0;
-    std::vector<std::int32_t> next_, prev_, head_;
-    mutable std::vector<std::uint32_t> gather_;  // candidates of one scan
+    Scheduler events_;
+    CellList<D> cells_;
 
     std::vector<std::uint64_t> pair_collisions_;
     CollisionSink<D>* sink_ = nullptr;

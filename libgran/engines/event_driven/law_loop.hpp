@@ -35,50 +35,48 @@ int EventDrivenEngine<D>::advance_with(double t_limit, std::uint64_t collision_l
         }
         if (counters_.events >= event_limit) return int(Stop::EventLimit);
         if (events_since_sort_ >= sort_every_) {
-            // Between events the state is consistent: re-sort, then rebuild the queue.
+            // Between events the state is consistent: move the time origin, re-sort.
             rebase_time();
             limit = t_limit - t_origin_;
             sort_by_cell();
             events_since_sort_ = 0;
-            queue_.reset(p_.size());
-            queue_.rebuild([this](std::uint32_t k) { return ev_time_[k]; });
         }
-        const double te = queue_.top_time();
+        // Pop.
+        const double te = events_.next_time();
         if (te > limit) {
             now_ = limit;
             limit_now_ = t_limit;  // now() reports the limit exactly
             return int(Stop::TimeLimit);
         }
         if (te >= 1e299) return int(Stop::NoEvents);
-        const std::uint32_t i = queue_.top();
+        const std::uint32_t i = events_.next();
         now_ = te;
         limit_now_ = kNoLimit;
         ++counters_.events;
         ++events_since_sort_;
-        switch (ev_kind_[i]) {
-            case kCollision: {
-                const auto j = static_cast<std::uint32_t>(ev_partner_[i]);
-                if (count_[j] != ev_count_[i]) {
+        // Validate and dispatch.
+        switch (events_.kind(i)) {
+            case EventKind::collision: {
+                const auto j = static_cast<std::uint32_t>(events_.code(i));
+                if (count_[j] != events_.partner_count(i)) {
                     ++counters_.stale_events;
                     move(i);
-                    predict(i);
-                    queue_.update(i, ev_time_[i]);
+                    repredict(i);
                     continue;
                 }
                 collide<L>(i, j);
                 if (counters_.collisions >= collision_limit) return int(Stop::CollisionLimit);
                 break;
             }
-            case kCell:
-                cross_cell(i, ev_partner_[i]);
+            case EventKind::cell:
+                cross_cell(i, events_.code(i));
                 break;
-            case kWall:
-                hit_wall<L>(i, ev_partner_[i]);
+            case EventKind::wall:
+                hit_wall<L>(i, events_.code(i));
                 break;
             default:
                 move(i);
-                predict(i);
-                queue_.update(i, ev_time_[i]);
+                repredict(i);
                 break;
         }
     }
@@ -111,24 +109,7 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
         ++counters_.tc_collisions;
     }
     CollisionRecord<D> rec;
-    if (sink_) {
-        rec.time = t_origin_ + now_;
-        rec.i = id_[i];
-        rec.j = id_[j];
-        rec.si = si;
-        rec.sj = sj;
-        rec.n = n;
-        rec.ri = p_.r[i];
-        rec.vi = p_.v[i];
-        rec.vj = p_.v[j];
-        if (rough_) {
-            rec.wi = p_.w[i];
-            rec.wj = p_.w[j];
-        }
-        rec.alpha = alpha;
-        rec.beta = beta;
-        rec.contact_distance = sigma_pair_[pij];
-    }
+    if (sink_) record_before(rec, i, j, n, alpha, beta, sigma_pair_[pij]);
     double impulse;
     if (rough_) {
         impulse = rough_collision<D>(p_.v[i], p_.v[j], p_.w[i], p_.w[j], mass_[si], mass_[sj],
@@ -143,20 +124,9 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
     ++count_[j];
     ++counters_.collisions;
     ++pair_collisions_[std::min(si, sj) * ns_ + std::max(si, sj)];
-    if (sink_) {
-        rec.vi_after = p_.v[i];
-        rec.vj_after = p_.v[j];
-        if (rough_) {
-            rec.wi_after = p_.w[i];
-            rec.wj_after = p_.w[j];
-        }
-        rec.impulse = impulse;
-        sink_->on_collision(rec);
-    }
-    predict(i);
-    queue_.update(i, ev_time_[i]);
-    predict(j);
-    queue_.update(j, ev_time_[j]);
+    if (sink_) notify(rec, i, j, impulse);
+    repredict(i);
+    repredict(j);
 }
 
 // A wall hit: a rule replacing the contact (a thermal wall), or the contact law against the wall

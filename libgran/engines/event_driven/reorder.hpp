@@ -1,0 +1,19 @@
+#pragma once
+// The engine re-sorts its particles by cell now and then (memory locality): every per-particle
+// array, in the particle state, the cell list and the scheduler, is permuted by the same order.
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace gran {
+
+// v[k] becomes the old v[order[k]]; an empty array (e.g. no angular velocities) stays empty.
+template <class T>
+void apply_order(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
+    if (v.empty()) return;
+    std::vector<T> old(std::move(v));
+    v.resize(old.size());
+    for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
+}
+
+}  // namespace gran
