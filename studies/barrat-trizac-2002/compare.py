@@ -32,8 +32,9 @@ def table_rows(res):
 
 
 def write_csv(rows, path):
-    """comparison.csv of this paper: measured values and errors with four decimals."""
-    comparison.write(rows, path, measured="{:.4f}", error="{:.4f}")
+    """comparison.csv of this paper: the paper's numbers as the study files give them, measured
+    values and errors with four decimals."""
+    comparison.write(rows, path, paper="{}", measured="{:.4f}", error="{:.4f}")
 
 
 def plot_tables(rows, path):
