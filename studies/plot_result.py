@@ -36,6 +36,8 @@ from gran.results import (AXES, NotAResult, Run, array_at, as_text, bin_centres,
                           species_groups, with_error)
 from gran.style import DPI, GAUSSIAN_LABEL, plt
 
+GAMMAS = ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]  # the ratios T_s / T_ref
+
 
 def scalar(group, name):
     """(value, error) of a scalar dataset, or None when absent; error is nan when not recorded."""
@@ -169,6 +171,17 @@ def plot_kinetic_energy(ax, run):
     return True
 
 
+def ratio_lines(ratios, where=""):
+    """The temperature ratios gamma (total, per component, rotational) of each species pair in a
+    `ratios` group (None: none)."""
+    lines = []
+    for ratio, g in (ratios.items() if isinstance(ratios, h5py.Group) else []):
+        lines.append(f"{ratio.replace('_over_', ' / ')}{where}:")
+        lines += [f"    {key} = {with_error(*scalar(g, key))}" for key in GAMMAS
+                  if scalar(g, key) is not None]
+    return lines
+
+
 def summary_lines(run):
     """The lines of the text panel (empty when nothing is known)."""
     lines = []
@@ -180,30 +193,20 @@ def summary_lines(run):
                 if scalar(g, key) is not None:
                     parts.append(f"{label} = {with_error(*scalar(g, key))}")
             lines.append(f"{name}: " + ",  ".join(parts))
-        ratios = temps.get("ratios")
-        for ratio, g in (ratios.items() if isinstance(ratios, h5py.Group) else []):
-            lines.append(f"{ratio.replace('_over_', ' / ')}:")
-            for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
-                if scalar(g, key) is not None:
-                    lines.append(f"    {key} = {with_error(*scalar(g, key))}")
+        lines += ratio_lines(temps.get("ratios"))
     prof = run.observable("profiles")
     middle = prof.get("middle") if prof is not None else None
-    middle_ratios = middle.get("ratios") if isinstance(middle, h5py.Group) else None
-    for ratio, g in (middle_ratios.items() if isinstance(middle_ratios, h5py.Group) else []):
-        lines.append(f"{ratio.replace('_over_', ' / ')} in the middle of the cell:")
-        for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
-            if scalar(g, key) is not None:
-                lines.append(f"    {key} = {with_error(*scalar(g, key))}")
+    if isinstance(middle, h5py.Group):
+        lines += ratio_lines(middle.get("ratios"), " in the middle of the cell")
     coll = run.observable("collision_statistics")
     if scalar(coll, "frequency_per_particle") is not None:
         freq = with_error(*scalar(coll, "frequency_per_particle"))
         lines.append(f"collision frequency per particle: {freq} / time")
-    perf = run.root.get("performance")
-    if isinstance(perf, h5py.Group):
-        if scalar(perf, "events_per_second") is not None:
-            lines.append(f"events per second: {scalar(perf, 'events_per_second')[0]:.3g}")
-        if scalar(perf, "wall_time") is not None:
-            lines.append(f"wall time: {scalar(perf, 'wall_time')[0]:.3g} s")
+    perf = run.performance
+    if "events_per_second" in perf:
+        lines.append(f"events per second: {perf['events_per_second']:.3g}")
+    if "wall_time" in perf:
+        lines.append(f"wall time: {perf['wall_time']:.3g} s")
     return lines
 
 
@@ -248,7 +251,7 @@ def plot_profile_ratios(ax, run):
     if y is None or not isinstance(ratios, h5py.Group):
         return False
     for ratio, g in ratios.items():
-        for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
+        for key in GAMMAS:
             values = array_at(g, key)
             if values is None:
                 continue
