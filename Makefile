@@ -2,7 +2,9 @@
 # (Debian packages, only when absent), configures, builds and runs.
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
-PY := /usr/bin/python3
+# Debian's python3 (h5py, numpy, matplotlib, yaml); the package gran (python/gran) is found through
+# PYTHONPATH, the one mechanism everywhere (CTest and `gran tradeoff` set it too).
+PY := PYTHONPATH=$(CURDIR)/python /usr/bin/python3
 DEB_PACKAGES := cmake g++ ninja-build pkg-config libeigen3-dev libboost-dev libhdf5-dev libfmt-dev \
   libspdlog-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
   python3-h5py python3-numpy python3-matplotlib python3-yaml

@@ -24,129 +24,43 @@ Needs h5py, numpy and matplotlib (Debian: python3-h5py python3-numpy python3-mat
 
 import argparse
 import math
-import warnings
-import re
 import sys
+import warnings
 from pathlib import Path
 
 import h5py
-import matplotlib
+import numpy as np
+from matplotlib.ticker import FormatStrFormatter
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
-import numpy as np  # noqa: E402
-from matplotlib.ticker import FormatStrFormatter  # noqa: E402
+from gran.results import (AXES, NotAResult, Run, array_at, as_text, bin_centres, estimate_at,
+                          species_groups, with_error)
+from gran.style import DPI, GAUSSIAN_LABEL, plt
 
-AXES = ("x", "y", "z")
-
-
-class NotAResult(Exception):
-    """The input is missing or is not a gran result file."""
-
-
-# --- reading -------------------------------------------------------------------------------------
-
-
-def open_result(path):
-    """Open `path` read-only, checking that it is a gran result (H5MD metadata and observables)."""
-    path = Path(path)
-    if not path.is_file():
-        raise NotAResult(f"no such file: {path}")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise NotAResult(f"{path} is not an HDF5 file ({e})") from None
-    if "h5md" not in f or "observables" not in f:
-        f.close()
-        raise NotAResult(f"{path} is not a gran result (no /h5md or /observables group)")
-    return f
-
-
-def as_text(value):
-    """A string dataset's value as str (h5py returns bytes for variable-length strings)."""
-    return value.decode() if isinstance(value, bytes) else str(value)
+GAMMAS = ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]  # the ratios T_s / T_ref
 
 
 def scalar(group, name):
     """(value, error) of a scalar dataset, or None when absent; error is nan when not recorded."""
-    if group is None or name not in group or not isinstance(group[name], h5py.Dataset):
-        return None
-    ds = group[name]
-    return float(ds[()]), float(ds.attrs.get("error", math.nan))
+    estimate = estimate_at(group, name)
+    return None if estimate is None else tuple(estimate)
 
 
-def array(group, name):
-    """A 1D dataset as a numpy array, or None when absent."""
-    if group is None or name not in group:
-        return None
-    return np.asarray(group[name][()], dtype=float)
-
-
-def observables_of_type(f, type_name):
-    """The observable groups whose `type` attribute is `type_name`."""
-    return [g for g in f["observables"].values()
-            if isinstance(g, h5py.Group) and as_text(g.attrs.get("type", "")) == type_name]
-
-
-def first_observable(f, type_name):
-    groups = observables_of_type(f, type_name)
-    return groups[0] if groups else None
-
-
-def species_groups(group, required):
-    """{name: subgroup} of the per-species subgroups of an observable (those holding `required`)."""
-    return {name: sub for name, sub in group.items()
-            if isinstance(sub, h5py.Group) and required in sub}
-
-
-def scene_keys(f):
-    """The top-level scalar keys of the stored scene as {key: str}, e.g. title and dimension.
-
-    Uses PyYAML when installed; otherwise reads the unindented `key: value` lines, which is all
-    the figure needs (the scene is written by gran, one top-level key per line).
-    """
-    if "parameters/scene" not in f:
-        return {}
-    text = as_text(f["parameters/scene"][()])
-    try:
-        import yaml
-    except ImportError:
-        lines = re.findall(r"^(\w+):[ \t]*(\S.*?)[ \t]*$", text, re.MULTILINE)
-        return {key: value.strip("'\"") for key, value in lines}
-    try:
-        scene = yaml.safe_load(text)
-    except yaml.YAMLError:  # a malformed scene only costs the title
-        return {}
-    if not isinstance(scene, dict):
-        return {}
-    return {k: str(v) for k, v in scene.items() if not isinstance(v, (dict, list))}
-
-
-def figure_title(f, source_name):
+def figure_title(run, source_name):
     """The scene title, then the file name, dimension and particle count."""
-    keys = scene_keys(f)
+    try:
+        scene = run.scene
+    except ValueError:  # a malformed scene only costs the title
+        scene = {}
     details = [source_name]
-    if "dimension" in keys:
-        details.append(f"{keys['dimension']}D")
-    if "particles" in keys:
-        details.append(f"N = {keys['particles']}")
-    title = keys.get("title", "")
+    if "dimension" in scene:
+        details.append(f"{scene['dimension']}D")
+    if "particles" in scene:
+        details.append(f"N = {scene['particles']}")
+    title = str(scene.get("title", ""))
     return f"{title}\n({', '.join(details)})" if title else ", ".join(details)
 
 
 # --- formatting ----------------------------------------------------------------------------------
-
-
-def with_error(value, error):
-    """'value ± error' with the error rounded to two significant digits."""
-    if not math.isfinite(error) or error <= 0:
-        return f"{value:.4g}"
-    decimals = max(0, 1 - math.floor(math.log10(error)))
-    return f"{value:.{decimals}f} ± {error:.{decimals}f}"
-
-
-def bin_centres(edges):
-    return 0.5 * (edges[:-1] + edges[1:])
 
 
 def spans_decades(values, factor=20.0):
@@ -164,15 +78,15 @@ def plain_log_labels(axis):
 # --- panels: each returns False when it has nothing to draw ---------------------------------------
 
 
-def plot_temperatures(ax, f):
-    obs = first_observable(f, "temperatures")
-    time = array(obs, "time")
+def plot_temperatures(ax, run):
+    obs = run.observable("temperatures")
+    time = array_at(obs, "time")
     if time is None or time.size == 0:
         return False
-    curves = [(name, array(g, "series/T"), scalar(g, "T"))
+    curves = [(name, array_at(g, "series/T"), scalar(g, "T"))
               for name, g in species_groups(obs, "series").items()]
     if len(curves) > 1:
-        curves.append(("mixture", array(obs, "series/T_mixture"), scalar(obs, "T_mixture")))
+        curves.append(("mixture", array_at(obs, "series/T_mixture"), scalar(obs, "T_mixture")))
     drawn = False
     for name, series, mean in curves:
         if series is None or series.size != time.size:
@@ -198,17 +112,17 @@ def plot_temperatures(ax, f):
     return True
 
 
-def plot_velocity_pdfs(ax, f):
-    obs = first_observable(f, "velocity_pdf")
+def plot_velocity_pdfs(ax, run):
+    obs = run.observable("velocity_pdf")
     if obs is None:
         return False
     lowest = math.inf
     for name, g in species_groups(obs, "x").items():
         axis = g["x"]
-        edges, density = array(axis, "scaled_edges"), array(axis, "scaled_density")
+        edges, density = array_at(axis, "scaled_edges"), array_at(axis, "scaled_density")
         if edges is None or density is None:
             continue
-        error = array(axis, "scaled_error")
+        error = array_at(axis, "scaled_error")
         c = bin_centres(edges)
         shown = density > 0  # empty bins cannot be drawn on a log axis
         kurt = scalar(axis, "kurtosis")
@@ -219,8 +133,7 @@ def plot_velocity_pdfs(ax, f):
     if not math.isfinite(lowest):
         return False
     c = np.linspace(*ax.get_xlim(), 400)
-    ax.plot(c, np.exp(-0.5 * c**2) / math.sqrt(2 * math.pi), "k--", lw=1.0,
-            label=r"Gaussian $e^{-c^2/2}/\sqrt{2\pi}$")
+    ax.plot(c, np.exp(-0.5 * c**2) / math.sqrt(2 * math.pi), "k--", lw=1.0, label=GAUSSIAN_LABEL)
     ax.set_yscale("log")
     ax.set_ylim(bottom=0.3 * lowest)  # error bars reaching zero end at the frame
     ax.set_xlabel(r"$c_x = v_x / \sqrt{T_s/m_s}$")
@@ -230,9 +143,9 @@ def plot_velocity_pdfs(ax, f):
     return True
 
 
-def plot_kinetic_energy(ax, f):
-    obs = first_observable(f, "kinetic_energy")
-    time, energy = array(obs, "time"), array(obs, "energy_per_particle")
+def plot_kinetic_energy(ax, run):
+    obs = run.observable("kinetic_energy")
+    time, energy = array_at(obs, "time"), array_at(obs, "energy_per_particle")
     if time is None or energy is None or time.size == 0:
         return False
     shown = (time > 0) & (energy > 0)
@@ -240,7 +153,7 @@ def plot_kinetic_energy(ax, f):
     if t.size == 0:
         return False
     ax.loglog(t, e, lw=1.0, label="kinetic energy per particle")
-    measuring = array(obs, "measuring")
+    measuring = array_at(obs, "measuring")
     if measuring is not None and measuring.size == time.size and measuring.any():
         start = time[np.argmax(measuring > 0)]
         if start > t[0]:
@@ -258,10 +171,21 @@ def plot_kinetic_energy(ax, f):
     return True
 
 
-def summary_lines(f):
+def ratio_lines(ratios, where=""):
+    """The temperature ratios gamma (total, per component, rotational) of each species pair in a
+    `ratios` group (None: none)."""
+    lines = []
+    for ratio, g in (ratios.items() if isinstance(ratios, h5py.Group) else []):
+        lines.append(f"{ratio.replace('_over_', ' / ')}{where}:")
+        lines += [f"    {key} = {with_error(*scalar(g, key))}" for key in GAMMAS
+                  if scalar(g, key) is not None]
+    return lines
+
+
+def summary_lines(run):
     """The lines of the text panel (empty when nothing is known)."""
     lines = []
-    temps = first_observable(f, "temperatures")
+    temps = run.observable("temperatures")
     if temps is not None:
         for name, g in species_groups(temps, "T").items():
             parts = [f"T = {with_error(*scalar(g, 'T'))}"]
@@ -269,35 +193,25 @@ def summary_lines(f):
                 if scalar(g, key) is not None:
                     parts.append(f"{label} = {with_error(*scalar(g, key))}")
             lines.append(f"{name}: " + ",  ".join(parts))
-        ratios = temps.get("ratios")
-        for ratio, g in (ratios.items() if isinstance(ratios, h5py.Group) else []):
-            lines.append(f"{ratio.replace('_over_', ' / ')}:")
-            for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
-                if scalar(g, key) is not None:
-                    lines.append(f"    {key} = {with_error(*scalar(g, key))}")
-    prof = first_observable(f, "profiles")
+        lines += ratio_lines(temps.get("ratios"))
+    prof = run.observable("profiles")
     middle = prof.get("middle") if prof is not None else None
-    middle_ratios = middle.get("ratios") if isinstance(middle, h5py.Group) else None
-    for ratio, g in (middle_ratios.items() if isinstance(middle_ratios, h5py.Group) else []):
-        lines.append(f"{ratio.replace('_over_', ' / ')} in the middle of the cell:")
-        for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
-            if scalar(g, key) is not None:
-                lines.append(f"    {key} = {with_error(*scalar(g, key))}")
-    coll = first_observable(f, "collision_statistics")
+    if isinstance(middle, h5py.Group):
+        lines += ratio_lines(middle.get("ratios"), " in the middle of the cell")
+    coll = run.observable("collision_statistics")
     if scalar(coll, "frequency_per_particle") is not None:
         freq = with_error(*scalar(coll, "frequency_per_particle"))
         lines.append(f"collision frequency per particle: {freq} / time")
-    perf = f.get("performance")
-    if isinstance(perf, h5py.Group):
-        if scalar(perf, "events_per_second") is not None:
-            lines.append(f"events per second: {scalar(perf, 'events_per_second')[0]:.3g}")
-        if scalar(perf, "wall_time") is not None:
-            lines.append(f"wall time: {scalar(perf, 'wall_time')[0]:.3g} s")
+    perf = run.performance
+    if "events_per_second" in perf:
+        lines.append(f"events per second: {perf['events_per_second']:.3g}")
+    if "wall_time" in perf:
+        lines.append(f"wall time: {perf['wall_time']:.3g} s")
     return lines
 
 
-def plot_summary(ax, f):
-    lines = summary_lines(f)
+def plot_summary(ax, run):
+    lines = summary_lines(run)
     if not lines:
         return False
     ax.axis("off")
@@ -307,17 +221,17 @@ def plot_summary(ax, f):
     return True
 
 
-def plot_profiles(ax, f):
+def plot_profiles(ax, run):
     """Packing fraction (solid) and temperature (dashed, right axis) across the cell, per species."""
-    obs = first_observable(f, "profiles")
-    y = array(obs, "position")
+    obs = run.observable("profiles")
+    y = array_at(obs, "position")
     if y is None:
         return False
     twin = ax.twinx()
     for k, (name, g) in enumerate(species_groups(obs, "packing_fraction").items()):
         colour = f"C{k}"
-        ax.plot(y, array(g, "packing_fraction"), color=colour, label=f"{name}: packing fraction")
-        twin.plot(y, array(g, "T"), color=colour, ls="--", label=f"{name}: T")
+        ax.plot(y, array_at(g, "packing_fraction"), color=colour, label=f"{name}: packing fraction")
+        twin.plot(y, array_at(g, "T"), color=colour, ls="--", label=f"{name}: T")
     axis = as_text(obs.attrs.get("axis", "y"))
     ax.set_xlabel(axis)
     ax.set_ylabel("packing fraction (solid)")
@@ -329,19 +243,19 @@ def plot_profiles(ax, f):
     return True
 
 
-def plot_profile_ratios(ax, f):
+def plot_profile_ratios(ax, run):
     """Temperature ratios gamma(y), per component, with the central window shaded."""
-    obs = first_observable(f, "profiles")
-    y = array(obs, "position")
+    obs = run.observable("profiles")
+    y = array_at(obs, "position")
     ratios = obs.get("ratios") if obs is not None else None
     if y is None or not isinstance(ratios, h5py.Group):
         return False
     for ratio, g in ratios.items():
-        for key in ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]:
-            values = array(g, key)
+        for key in GAMMAS:
+            values = array_at(g, key)
             if values is None:
                 continue
-            errors = array(g, key + "_error")
+            errors = array_at(g, key + "_error")
             ax.errorbar(y, values, yerr=errors, marker=".", lw=1, capsize=2,
                         label=f"{key} ({ratio.replace('_over_', '/')})")
     window = float(obs.attrs.get("middle_window", 0.2))
@@ -361,12 +275,12 @@ PANELS = (plot_temperatures, plot_velocity_pdfs, plot_profiles, plot_profile_rat
 # --- figure --------------------------------------------------------------------------------------
 
 
-def make_figure(f, source_name):
+def make_figure(run, source_name):
     """Draw every panel that has data; returns the figure (None when no panel has data)."""
     fig, axes = plt.subplots(3, 2, figsize=(12, 13))
     used = []
     for ax, panel in zip(axes.flat, PANELS):
-        if panel(ax, f):
+        if panel(ax, run):
             used.append(ax)
         else:
             ax.remove()
@@ -379,7 +293,7 @@ def make_figure(f, source_name):
     for ax, cell in zip(used, grid):  # close the gaps left by skipped panels
         ax.set_subplotspec(cell)
     fig.set_size_inches(6 * ncols, 4.5 * nrows)
-    fig.suptitle(figure_title(f, source_name), fontsize="medium")
+    fig.suptitle(figure_title(run, source_name), fontsize="medium")
     with warnings.catch_warnings():  # uneven grids after skipped panels
         warnings.simplefilter("ignore")
         fig.tight_layout()
@@ -389,12 +303,12 @@ def make_figure(f, source_name):
 def plot_result(result, out=None):
     """Plot `result` into `out` (default: result with .png); returns the PNG path."""
     out = Path(out) if out else Path(result).with_suffix(".png")
-    with open_result(result) as f:
-        fig = make_figure(f, Path(result).name)
+    with Run.open(result) as run:
+        fig = make_figure(run, Path(result).name)
     if fig is None:
         raise NotAResult(f"{result}: the result holds no observable that can be plotted")
     out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=120)
+    fig.savefig(out, dpi=DPI)
     plt.close(fig)
     return out
 

@@ -18,47 +18,10 @@ import math
 import sys
 from pathlib import Path
 
-import h5py
-import matplotlib
 import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-
-def strings(ds):
-    return [s.decode() if isinstance(s, bytes) else str(s) for s in ds[()]]
-
-
-def read(path):
-    with h5py.File(path, "r") as f:
-        if "tradeoff" not in f:
-            raise KeyError(f"{path}: no /tradeoff group (run `gran tradeoff` or give the study a `tradeoff:` key)")
-        g = f["tradeoff"]
-        t = {
-            "runs": strings(g["runs"]),
-            "knobs": strings(g["knobs"]),
-            "levels": strings(g["levels"]),
-            "cost": g["cost"][()],
-            "worst": g["worst_accuracy"][()],
-            "pareto": g["pareto"][()].astype(bool),
-            "reference": g["reference"][()].astype(bool),
-            "quantities": strings(g["quantity_names"]),
-            "study": f["study"].attrs.get("file", path) if "study" in f else path,
-        }
-        t["panels"] = []
-        for q in t["quantities"]:
-            qg = g["quantities"][q]
-            t["panels"].append({
-                "name": q,
-                "accuracy": qg["accuracy"][()],
-                "deviation": qg["deviation"][()],
-                "error": qg["deviation_error"][()],
-                "pareto": qg["pareto"][()].astype(bool),
-                "kind": qg.attrs.get("reference_kind", ""),
-                "reference": qg["reference"][()],
-            })
-        return t
+import gran
+from gran.style import DPI, plt
 
 
 def short(q):
@@ -103,7 +66,8 @@ def main():
     ap.add_argument("-o", "--output")
     a = ap.parse_args()
     try:
-        t = read(a.study)
+        with gran.Study.open(a.study) as study:
+            t = study.tradeoff()
     except (OSError, KeyError) as e:
         print(f"plot_tradeoff: {e}", file=sys.stderr)
         return 1
@@ -122,7 +86,7 @@ def main():
     fig.suptitle(f"speed versus accuracy: {Path(str(t['study'])).name}", fontsize=10)
     fig.tight_layout()
     out = a.output or str(Path(a.study).with_suffix("")).removesuffix(".study") + ".tradeoff.png"
-    fig.savefig(out, dpi=120)
+    fig.savefig(out, dpi=DPI)
     print(out)
     return 0
 

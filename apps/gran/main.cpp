@@ -91,17 +91,19 @@ void print_headline(const YAML::Node& summary) {
     }
 }
 
-// The PNG of error versus cost (studies/plot_tradeoff.py, Debian's python3 with matplotlib).
+// The PNG of error versus cost (studies/plot_tradeoff.py, Debian's python3 with matplotlib). The
+// script imports the package gran from python/, found through PYTHONPATH as everywhere else.
 void plot_tradeoff(const gran::StudyReport& rep) {
-    const std::filesystem::path script =
-        std::filesystem::path(GRAN_SOURCE_DIR) / "studies" / "plot_tradeoff.py";
+    const std::filesystem::path source(GRAN_SOURCE_DIR);
+    const std::filesystem::path script = source / "studies" / "plot_tradeoff.py";
     const std::string png = rep.merged.substr(0, rep.merged.size() - 9) + ".tradeoff.png";
     if (!std::filesystem::exists(script) || !std::filesystem::exists("/usr/bin/python3")) {
         spdlog::warn("no plot: {} or /usr/bin/python3 is missing", script.string());
         return;
     }
     const std::string cmd =
-        fmt::format("/usr/bin/python3 '{}' '{}' -o '{}'", script.string(), rep.merged, png);
+        fmt::format("PYTHONPATH='{}' /usr/bin/python3 '{}' '{}' -o '{}'",
+                    (source / "python").string(), script.string(), rep.merged, png);
     if (std::system(cmd.c_str()) == 0)
         std::cout << "plot: " << png << "\n";
     else

@@ -458,13 +458,14 @@ std::string override_value(const StudyRun& run, const std::string& key) {
 void write_csv(const std::string& path, const Study& st, const Table& t,
                const std::vector<bool>& have) {
     std::ofstream o(path);
-    o << "run";
+    // `point` names the study point a run belongs to, so readers group runs without parsing names.
+    o << "run,point";
     for (const auto& k : st.swept_keys) o << "," << csv_field(k);
     for (const auto& q : t.quantities) o << "," << csv_field(q) << "," << csv_field(q + ".error");
     o << "\n";
     for (std::size_t i = 0; i < st.runs.size(); ++i) {
         if (!have[i]) continue;
-        o << csv_field(st.runs[i].name);
+        o << csv_field(st.runs[i].name) << "," << csv_field(st.runs[i].point);
         for (const auto& k : st.swept_keys) o << "," << csv_field(override_value(st.runs[i], k));
         for (const auto& q : t.quantities) {
             auto it = t.rows[i].find(q);
@@ -606,10 +607,11 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
         sg.attr("file", st.file);
         sg.attr("scene", st.scene);
         sg.attr("swept_keys", st.swept_keys);
-        std::vector<std::string> names;
+        std::vector<std::string> names, points;
         for (std::size_t i = 0; i < n; ++i) {
             if (!have[i]) continue;
             names.push_back(st.runs[i].name);
+            points.push_back(st.runs[i].point);
             h5::File rf = h5::File::open_read(out[i]);
             h5::Group pg = root.group("points/" + st.runs[i].name);
             pg.copy_children_from(rf.root());
@@ -624,6 +626,7 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
         }
         h5::Group sum = root.group("summary");
         sum.write_strings("runs", names);
+        sum.write_strings("points", points);
         for (const auto& key : st.swept_keys) {
             std::vector<std::string> vals;
             for (std::size_t i = 0; i < n; ++i) {

@@ -1,14 +1,15 @@
 """Reading the Barrat & Trizac 2002 study results and the fits the figures and checks share.
 
 A `Results` directory holds one gran result file per study point (`<name>.h5`); `Run` gives the
-profiles, slab velocity distributions and effective-restitution histograms of one of them, every
-curve as (x, value, error) arrays with x the bin centres.
+profiles, slab velocity distributions and effective-restitution histograms of one of them (read
+through gran.results), every curve as (x, value, error) arrays with x the bin centres.
 """
 from pathlib import Path
 
-import h5py
 import numpy as np
-import yaml
+
+from gran import results
+from gran.fits import power_law
 
 PROFILES = "observables/profiles"
 SLABS = "observables/slab_velocity_pdf"
@@ -22,24 +23,18 @@ def mono(alpha, beta, phi, wall="sawtooth"):
     return f"{prefix}_a{alpha}_beta{beta}_phi{phi}"
 
 
-def centres(edges):
-    """Bin centres of a histogram from its edges."""
-    edges = np.asarray(edges)
-    return 0.5 * (edges[1:] + edges[:-1])
-
-
 class Run:
-    """One gran result file."""
+    """One gran result file of these studies."""
 
     def __init__(self, path):
         self.path = Path(path)
-        self.file = h5py.File(self.path, "r")
-        self.scene = yaml.safe_load(self.file["parameters/scene"][()])
+        self.result = results.Run.open(self.path)
+        self.scene = self.result.scene
 
     @property
     def species(self):
         """Species names in scene order (the first is the reference of the ratios)."""
-        return [s["name"] for s in self.scene["species"]]
+        return self.result.species
 
     @property
     def height(self):
@@ -48,9 +43,8 @@ class Run:
 
     def profile(self, key):
         """Profile `key` (e.g. 'grain/T', 'ratios/light_over_heavy/gamma'): (y/L, value, error)."""
-        g = self.file[PROFILES]
-        y = g["position"][:] / self.height
-        return y, g[key][:], g[key + "_error"][:]
+        y, value, error = self.result.profile(f"{PROFILES}/{key}")
+        return y / self.height, value, error
 
     def density_profile(self, species):
         """Number density of one species over its mean across the cell: (y/L, value, error)."""
@@ -65,8 +59,7 @@ class Run:
 
     def middle(self, key):
         """Value of a profile over the central window, with its error."""
-        d = self.file[f"{PROFILES}/middle/{key}"]
-        return float(d[()]), float(d.attrs["error"])
+        return tuple(self.result.estimate(f"{PROFILES}/middle/{key}"))
 
     def middle_gamma(self, component=""):
         """gamma (or gamma_x, gamma_y) in the middle of the cell, with its error."""
@@ -75,49 +68,48 @@ class Run:
         return self.middle(f"ratios/{light}_over_{heavy}/gamma{suffix}")
 
     def slab(self, centre):
-        """HDF5 group of the slab velocity distribution centred at `centre` (fraction of L)."""
-        for g in self.file[SLABS].values():
+        """Path of the slab velocity distribution centred at `centre` (fraction of L)."""
+        for g in self.result.root[SLABS].values():
             if abs(g.attrs["centre"] - centre) < 1e-9:
-                return g
+                return g.name
         raise KeyError(f"{self.path.name}: no slab centred at {centre}")
 
     def slab_pdf(self, centre, component, species=None, kind="scaled"):
         """Velocity distribution in a slab, rescaled by the slab temperature: (c, P, error)."""
-        g = self.slab(centre)[species or self.species[0]][component]
-        return centres(g[f"{kind}_edges"]), g[f"{kind}_density"][:], g[f"{kind}_error"][:]
+        path = f"{self.slab(centre)}/{species or self.species[0]}/{component}"
+        return self.result.histogram(path, kind + "_").curve()
 
     def angular_pdf(self, species=None):
         """Angular-velocity distribution (whole cell, rescaled by sqrt(T_rot/I)): (c, P, error)
         and the kurtosis, or None when the run has no angular_velocity_pdf (smooth particles)."""
-        if "observables/angular_velocity_pdf" not in self.file:
+        if "observables/angular_velocity_pdf" not in self.result.root:
             return None
-        g = self.file["observables/angular_velocity_pdf"][species or self.species[0]]
-        z = g["z"]
-        data = centres(z["scaled_edges"]), z["scaled_density"][:], z["scaled_error"][:]
-        return data, float(g["kurtosis"][()]), float(g["kurtosis"].attrs["error"])
+        path = f"observables/angular_velocity_pdf/{species or self.species[0]}"
+        kurtosis = self.result.estimate(f"{path}/kurtosis")
+        return self.result.histogram(f"{path}/z", "scaled_").curve(), *kurtosis
 
     def slab_scalar(self, centre, component, key, species=None):
         """A scalar of a slab distribution ('kurtosis', 'temperature')."""
-        return float(self.slab(centre)[species or self.species[0]][component][key][()])
+        return self.result.number(f"{self.slab(centre)}/{species or self.species[0]}/{component}/"
+                                  f"{key}")
 
     def restitution(self, key="alpha_1d"):
-        """Histogram of the effective restitution ('alpha_1d', 'alpha_1d_tail', ...): (x, P, e)."""
-        g = self.file[f"{RESTITUTION}/{key}"]
-        edges = g["edges"][:]
-        x = np.sqrt(edges[1:] * edges[:-1]) if key.endswith("tail") else centres(edges)
-        return x, g["density"][:], g["error"][:]
+        """Histogram of the effective restitution ('alpha_1d', 'alpha_1d_tail', ...): (x, P, e),
+        x the geometric bin centres of the logarithmic tail histograms."""
+        h = self.result.histogram(f"{RESTITUTION}/{key}")
+        x = np.sqrt(h.edges[1:] * h.edges[:-1]) if key.endswith("tail") else h.centres
+        return x, h.density, h.error
 
     def conditional(self, g_value):
         """P(alpha_1d | g_x) at the conditional value g_x = g_value: (alpha_1d, P, error)."""
-        for name, g in self.file[f"{RESTITUTION}/conditional"].items():
+        for name, g in self.result.root[f"{RESTITUTION}/conditional"].items():
             if abs(g.attrs["g"] - g_value) < 1e-9:
                 return self.restitution(f"conditional/{name}")
         raise KeyError(f"{self.path.name}: no conditional distribution at g = {g_value}")
 
     def fraction_above_one(self):
         """Fraction of collisions with alpha_1d > 1, with its error."""
-        d = self.file[f"{RESTITUTION}/fraction_above_one"]
-        return float(d[()]), float(d.attrs["error"])
+        return tuple(self.result.estimate(f"{RESTITUTION}/fraction_above_one"))
 
 
 class Results:
@@ -150,10 +142,8 @@ def power_law_fit(x, p, err, lo, hi):
     sel = (x > lo) & (x < hi) & (p > 0) & (err > 0)
     if sel.sum() < MIN_FIT_POINTS:
         return float("nan"), float("nan")
-    lx, ly, w = np.log(x[sel]), np.log(p[sel]), p[sel] / err[sel]
-    (k, a), cov = np.polyfit(lx, ly, 1, w=w, cov="unscaled")
-    chi2 = np.sum((w * (ly - (a + k * lx))) ** 2) / max(sel.sum() - 2, 1)
-    return float(k), float(np.sqrt(cov[0, 0] * max(chi2, 1.0)))
+    fit = power_law(x[sel], p[sel], err[sel])
+    return fit.exponent, fit.exponent_error
 
 
 def tail_exponent(run, lo=10.0, hi=1000.0):

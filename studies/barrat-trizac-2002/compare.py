@@ -6,42 +6,35 @@ Writes RESULTS_DIR/comparison.csv (quantity,paper,measured,error; table rows onl
 RESULTS_DIR/tables.png. figures.py calls the same functions and rewrites comparison.csv with the
 rows of the figures added (`make reproduce-barrat-trizac-2002` runs figures.py).
 """
-import csv
 import sys
 from pathlib import Path
 
-import h5py
-import matplotlib
+import yaml
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import yaml  # noqa: E402
+from analysis import Results
+from gran import comparison
+from gran.style import DPI, plt
 
 HERE = Path(__file__).resolve().parent
-HEADER = ["quantity", "paper", "measured", "error"]
 
 
-def table_rows(outdir):
-    """(quantity, paper, measured, error) for every paper value of tables.yaml."""
+def table_rows(res):
+    """(quantity, paper, measured, error) for every paper value of tables.yaml (gamma, gamma_x,
+    gamma_rot of light over heavy in the middle of the cell)."""
     study = yaml.safe_load((HERE / "tables.yaml").read_text())
     rows = []
     for point in study["points"]:
-        with h5py.File(Path(outdir) / f"{point['name']}.h5", "r") as f:
-            g = f["observables/profiles/middle/ratios/light_over_heavy"]
-            for key, paper in point["paper"].items():
-                d = g[key]
-                rows.append((f"{point['name']}_{key}", paper, float(d[()]),
-                             float(d.attrs["error"])))
+        run = res[point["name"]]
+        for key, paper in point["paper"].items():
+            measured, error = run.middle(f"ratios/light_over_heavy/{key}")
+            rows.append((f"{point['name']}_{key}", paper, measured, error))
     return rows
 
 
 def write_csv(rows, path):
-    """Write comparison rows (quantity, paper, measured, error) to a CSV file, replacing it."""
-    with open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(HEADER)
-        for q, p, m, e in rows:
-            w.writerow([q, p, f"{m:.4f}", f"{e:.4f}"])
+    """comparison.csv of this paper: the paper's numbers as the study files give them, measured
+    values and errors with four decimals."""
+    comparison.write(rows, path, paper="{}", measured="{:.4f}", error="{:.4f}")
 
 
 def plot_tables(rows, path):
@@ -57,13 +50,13 @@ def plot_tables(rows, path):
     ax.set_ylabel("gran, middle of the cell")
     ax.legend()
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=DPI)
     plt.close(fig)
 
 
 def main():
     outdir = Path(sys.argv[1] if len(sys.argv) > 1 else "results/barrat-trizac-2002")
-    rows = table_rows(outdir)
+    rows = table_rows(Results(outdir))
     write_csv(rows, outdir / "comparison.csv")
     plot_tables(rows, outdir / "tables.png")
     worst = max(abs(m - p) for _, p, m, _ in rows)

@@ -12,21 +12,12 @@ Error bars are one standard error (jackknife or block errors written by gran).
 import sys
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(1, str(Path(__file__).resolve().parents[1]))
-from figure_style import label, save  # noqa: E402
-import claims  # noqa: E402
-import compare  # noqa: E402
-from analysis import (Results, cutoff_exponent, mono, second_moment,  # noqa: E402
-                      tail_exponent)
-
-GAUSS = "standard Gaussian"
+import claims
+import compare
+from analysis import Results, cutoff_exponent, mono, second_moment, tail_exponent
+from gran.style import errorbars, gaussian, label, plt, positive, save
 
 
 # --- run names (see monodisperse.yaml and mixture.yaml) --------------------------------------
@@ -54,26 +45,6 @@ def new_figure(ncols=1, width=5.2, height=4.2):
     return fig, list(axes[0])
 
 
-def curve(ax, data, fmt, label=None, **kw):
-    """Plot (x, value, error) with error bars; `fmt` as in matplotlib ('o', '-', 's--')."""
-    x, y, e = data
-    style = dict(ms=3.5, lw=1.2, elinewidth=0.7, capsize=0) | kw
-    ax.errorbar(x, y, yerr=e, fmt=fmt, label=label, **style)
-
-
-def positive(data):
-    """Keep the bins of a density with a positive value (for logarithmic axes)."""
-    x, y, e = data
-    sel = y > 0
-    return x[sel], y[sel], np.minimum(e[sel], 0.999 * y[sel])
-
-
-def gaussian(ax, lo=-5, hi=5, fmt="k-"):
-    """The unit-variance Gaussian P(c) = exp(-c^2/2)/sqrt(2 pi)."""
-    c = np.linspace(lo, hi, 400)
-    ax.plot(c, np.exp(-c**2 / 2) / np.sqrt(2 * np.pi), fmt, lw=1, label=GAUSS)
-
-
 Y_L = "$y/L$"
 
 
@@ -83,10 +54,10 @@ def fig1(res, outdir):
     """Fig. 1: packing-fraction profiles phi(y)/phi0, two inelasticities, two densities."""
     fig, (ax,) = new_figure()
     for alpha, marker in ((0.9, "o"), (0.8, "s")):
-        curve(ax, res[mono(alpha, -1, 0.015)].density_profile("grain"), marker,
-              rf"$\phi_0 = 0.015$, $\alpha = {alpha}$")
-        curve(ax, res[mono(alpha, -1, 0.04)].density_profile("grain"),
-              "-" if alpha == 0.9 else "--", rf"$\phi_0 = 0.04$, $\alpha = {alpha}$")
+        errorbars(ax, res[mono(alpha, -1, 0.015)].density_profile("grain"), marker,
+                  rf"$\phi_0 = 0.015$, $\alpha = {alpha}$")
+        errorbars(ax, res[mono(alpha, -1, 0.04)].density_profile("grain"),
+                  "-" if alpha == 0.9 else "--", rf"$\phi_0 = 0.04$, $\alpha = {alpha}$")
     label(ax, Y_L, r"$\phi(y)/\phi_0$")
     save(fig, outdir, "fig1", "Fig. 1: density profiles, N = 500, vibrating walls")
     return []
@@ -97,8 +68,8 @@ def fig2(res, outdir):
     fig, (a, b) = new_figure(2)
     for beta, fmt in ((-1, "o-"), (-0.8, "s-"), (-0.5, "^-"), (-0.2, "v-")):
         run = res[mono(0.9, beta, 0.015)]
-        curve(a, run.density_profile("grain"), fmt, rf"$\beta = {beta}$")
-        curve(b, run.profile("grain/T"), fmt, rf"$\beta = {beta}$")
+        errorbars(a, run.density_profile("grain"), fmt, rf"$\beta = {beta}$")
+        errorbars(b, run.profile("grain/T"), fmt, rf"$\beta = {beta}$")
     label(a, Y_L, r"$\phi(y)/\phi_0$", "(density: upward curves)")
     label(b, Y_L, r"$T(y)$  [$m v_0^2$]", "(temperature: downward curves)")
     save(fig, outdir, "fig2", r"Fig. 2: $\alpha = 0.9$, N = 500, $\phi_0 = 0.015$, vibrating walls")
@@ -110,10 +81,10 @@ def fig3(res, outdir):
     fig, (ax,) = new_figure(width=6)
     run = res[mono(0.9, -1, 0.04)]
     for key, fmt, name in (("T_y", "^", "$T_y$"), ("T", "o", "$T$"), ("T_x", "v", "$T_x$")):
-        curve(ax, run.profile(f"grain/{key}"), fmt, name)
+        errorbars(ax, run.profile(f"grain/{key}"), fmt, name)
     label(ax, Y_L, r"temperature  [$m v_0^2$]", loc="upper left")
     inset = ax.inset_axes([0.35, 0.5, 0.38, 0.45])
-    curve(inset, run.profile("mixture/anisotropy"), "k.")
+    errorbars(inset, run.profile("mixture/anisotropy"), "k.")
     inset.set_xlabel(Y_L, fontsize=8)
     inset.set_ylabel(r"$A = (T_y - T_x)/(2T)$", fontsize=8)
     inset.tick_params(labelsize=7)
@@ -127,12 +98,12 @@ def fig4(res, outdir):
     for alpha, color in ((0.9, "C0"), (0.8, "C1"), (0.7, "C2")):
         run = res[mono(alpha, -1, 0.04)]
         for ax, suffix, temp in ((a, "", "T"), (b, "_yy", "T_y")):
-            curve(ax, run.profile(f"eos/P_enskog{suffix}"), "o", rf"$\alpha = {alpha}$, Enskog",
-                  color=color)
-            curve(ax, run.profile(f"eos/P_ideal{suffix}"), "-", rf"$\alpha = {alpha}$, ideal "
-                  rf"$\rho {temp}$", color=color)
-        curve(b, run.profile("pressure/P_yy"), "k:", "measured $P_{yy}$ (virial)"
-              if alpha == 0.9 else None)
+            errorbars(ax, run.profile(f"eos/P_enskog{suffix}"), "o",
+                      rf"$\alpha = {alpha}$, Enskog", color=color)
+            errorbars(ax, run.profile(f"eos/P_ideal{suffix}"), "-",
+                      rf"$\alpha = {alpha}$, ideal $\rho {temp}$", color=color)
+        errorbars(b, run.profile("pressure/P_yy"), "k:", "measured $P_{yy}$ (virial)"
+                  if alpha == 0.9 else None)
     for ax in (a, b):
         ax.set_yscale("log")
         ax.set_ylim(2.5e-3, 0.15)  # room for the legend below the curves
@@ -155,7 +126,7 @@ def fig6(res, outdir):
         run = res[mono(0.9, 0, 0.04, wall)]
         for centre, fmt in ((0.025, "o-"), (0.1, "s-"), (0.25, "^-"), (0.5, "v-")):
             data = run.slab_pdf(centre, "y")
-            curve(ax, data, fmt, f"$y/L$ = {centre}")
+            errorbars(ax, data, fmt, f"$y/L$ = {centre}")
             if centre in (0.025, 0.5):
                 # "By definition, <c_y^2> = 1 whatever the altitude y." (Fig. 6 caption)
                 m, e = second_moment(data[0], data[1], data[2])
@@ -174,14 +145,14 @@ def fig7(res, outdir):
     fig, (a, b) = new_figure(2)
     for (_, name, run), fmt in zip(FIG7_RUNS, ("+", "*", "o")):
         kurt = res[run].slab_scalar(0.5, "x", "kurtosis")
-        curve(a, positive(res[run].slab_pdf(0.5, "x")), fmt, f"{name} (kurtosis {kurt:.2f})",
-              mfc="none")
+        errorbars(a, positive(res[run].slab_pdf(0.5, "x")), fmt,
+                  f"{name} (kurtosis {kurt:.2f})", mfc="none")
     for (_, name, run), fmt in zip(FIG7_RUNS, ("+", "*", "o")):
         ang = res[run].angular_pdf()
         if ang is not None:
             data, kurt, kerr = ang
-            curve(b, positive(data), fmt, f"{name} (kurtosis {kurt:.3f} $\\pm$ {kerr:.3f})",
-                  mfc="none")
+            errorbars(b, positive(data), fmt,
+                      f"{name} (kurtosis {kurt:.3f} $\\pm$ {kerr:.3f})", mfc="none")
     for ax in (a, b):
         gaussian(ax)
         ax.set_yscale("log")
@@ -200,10 +171,10 @@ def fig8(res, outdir):
     inset = ax.inset_axes([0.5, 0.42, 0.46, 0.54])
     rows = []
     for (tag, name, run), fmt in zip(FIG7_RUNS, ("-", "--", ":")):
-        curve(ax, res[run].restitution(), fmt, name)
+        errorbars(ax, res[run].restitution(), fmt, name)
         k, e = tail_exponent(res[run])
-        curve(inset, positive(res[run].restitution("alpha_1d_tail")), "." + fmt,
-              f"slope {k:.3f} ± {e:.3f}")
+        errorbars(inset, positive(res[run].restitution("alpha_1d_tail")), "." + fmt,
+                  f"slope {k:.3f} ± {e:.3f}")
         # "Our study shows that P(alpha_1d) display a alpha_1d^-2 tail for alpha_1d > 1"
         rows.append((f"fig8_{tag}_tail_exponent", -2, k, e))
     x = np.array([1.0, 1000.0])
@@ -224,7 +195,7 @@ def fig9(res, outdir):
     fig, (a, b) = new_figure(2)
     rows = []
     for (wall, run), fmt in zip(WALLS_FIG9.items(), ("o", "s")):
-        curve(a, positive(res[run].conditional(1.0)), fmt, f"{wall} walls", mfc="none")
+        errorbars(a, positive(res[run].conditional(1.0)), fmt, f"{wall} walls", mfc="none")
         for g in (0.2, 0.5, 1.0):
             # "they ... show an exp[-(alpha_1d g_x)^2/R] decrease for the case of vibrating
             #  walls (closer to the experimental situation), and a broader form
@@ -240,7 +211,7 @@ def fig9(res, outdir):
     for g in (0.2, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0):
         alpha, p, err = run.conditional(g)
         sel = (alpha > 0) & (err < 0.5 * p)  # bins with at least 4 collisions
-        curve(b, ((alpha[sel] * g) ** 2, p[sel], err[sel]), ".-", f"$g_x$ = {g}", lw=0.8)
+        errorbars(b, ((alpha[sel] * g) ** 2, p[sel], err[sel]), ".-", f"$g_x$ = {g}", lw=0.8)
     b.set_yscale("log")
     b.set_xlim(0, 12)
     label(b, r"$(\alpha_{1d}\, g_x)^2$", r"$P(\alpha_{1d}\,|\,g_x)$",
@@ -254,8 +225,10 @@ def fig9(res, outdir):
 
 def mixture_profiles(ax, run, fmt_heavy, fmt_light, suffix=""):
     """Density profiles rho_i(y)/rho_i,0 of both species of a mixture run."""
-    curve(ax, run.density_profile("heavy"), fmt_heavy, r"$\rho_1/\rho_{1,0}$ (heavy)" + suffix)
-    curve(ax, run.density_profile("light"), fmt_light, r"$\rho_2/\rho_{2,0}$ (light)" + suffix)
+    errorbars(ax, run.density_profile("heavy"), fmt_heavy,
+              r"$\rho_1/\rho_{1,0}$ (heavy)" + suffix)
+    errorbars(ax, run.density_profile("light"), fmt_light,
+              r"$\rho_2/\rho_{2,0}$ (light)" + suffix)
 
 
 def fig13(res, outdir):
@@ -263,12 +236,12 @@ def fig13(res, outdir):
     fig, axes = new_figure(2, height=4.6)
     for ax, m in zip(axes, (3, 5)):
         run = res[f"tableI_m{m}_beta0"]
-        curve(ax, run.profile("heavy/T"), "v-", "$T_1$ (heavy)")
-        curve(ax, run.profile("light/T"), "^-", "$T_2$ (light)")
+        errorbars(ax, run.profile("heavy/T"), "v-", "$T_1$ (heavy)")
+        errorbars(ax, run.profile("light/T"), "^-", "$T_2$ (light)")
         mixture_profiles(ax, run, "s-", "o-")
-        curve(ax, run.gamma_profile(), "k--", r"$\gamma = T_2/T_1$")
-        curve(ax, res[f"fig13_m{m}_N1N2_8to1"].gamma_profile(), "ko",
-              r"$\gamma$, $\rho_{1,0} = 8\rho_{2,0}$", mfc="none")
+        errorbars(ax, run.gamma_profile(), "k--", r"$\gamma = T_2/T_1$")
+        errorbars(ax, res[f"fig13_m{m}_N1N2_8to1"].gamma_profile(), "ko",
+                  r"$\gamma$, $\rho_{1,0} = 8\rho_{2,0}$", mfc="none")
         label(ax, Y_L, r"$T_i$ [$m_2 v_0^2$], $\rho_i/\rho_{i,0}$, $\gamma$",
               f"({'a' if m == 3 else 'b'}) $m_1 = {m} m_2$", ncol=2)
     save(fig, outdir, "fig13", r"Fig. 13: $\phi_0 = 0.015$, $\rho_{1,0} = \rho_{2,0}$, "
@@ -282,8 +255,8 @@ def fig14(res, outdir):
     lines, symbols = res["tableII_789_beta0"], res["tableII_987_beta0"]
     mixture_profiles(ax, lines, "-", "-", ", 0.7;0.8;0.9")
     mixture_profiles(ax, symbols, "o", "s", ", 0.9;0.8;0.7")
-    curve(ax, lines.gamma_profile(), "k--", r"$\gamma$, 0.7;0.8;0.9")
-    curve(ax, symbols.gamma_profile(), "k*", r"$\gamma$, 0.9;0.8;0.7")
+    errorbars(ax, lines.gamma_profile(), "k--", r"$\gamma$, 0.7;0.8;0.9")
+    errorbars(ax, symbols.gamma_profile(), "k*", r"$\gamma$, 0.9;0.8;0.7")
     label(ax, Y_L, r"$\rho_i/\rho_{i,0}$, $\gamma = T_2/T_1$", ncol=2)
     save(fig, outdir, "fig14", r"Fig. 14: $m_1 = 3m_2$, $\beta = 0$, $\rho_{1,0} = \rho_{2,0}$, "
          r"$\phi_0 = 0.015$, N = 500")
@@ -297,7 +270,7 @@ def fig15(res, outdir):
     names = (r"$\gamma = T_2/T_1$", r"$\gamma_x = T_{2,x}/T_{1,x}$")
     for ax, comp, name in zip(axes, ("", "x"), names):
         for (lab, run), fmt in zip(runs.items(), ("o-", "s--")):
-            curve(ax, res[run].gamma_profile(comp), fmt, lab)
+            errorbars(ax, res[run].gamma_profile(comp), fmt, lab)
         label(ax, Y_L, name, f"({'a' if not comp else 'b'})")
     save(fig, outdir, "fig15", r"Fig. 15: $m_1 = 3m_2$, $\alpha_{ij} = 0.9;0.8;0.7$, $\beta = 0$, "
          "N = 500")
@@ -310,11 +283,13 @@ def fig16(res, outdir):
     fmts = ("v-", "^-", "o-", "s-", "D-")
     for ax, (order, name) in zip(axes, ORDERINGS.items()):
         for (ratio, value), fmt in zip(NUMBER_RATIOS.items(), fmts):
-            curve(ax, res[fig16_run(order, ratio)].gamma_profile(), fmt, f"$N_1/N_2$ = {value:g}")
+            errorbars(ax, res[fig16_run(order, ratio)].gamma_profile(), fmt,
+                      f"$N_1/N_2$ = {value:g}")
         label(ax, Y_L, r"$\gamma = T_2/T_1$", name)
     for (order, name), fmt in zip(ORDERINGS.items(), ("o-", "s--")):
         mid = np.array([res[fig16_run(order, r)].middle_gamma() for r in NUMBER_RATIOS])
-        curve(axes[2], (np.array(list(NUMBER_RATIOS.values())), mid[:, 0], mid[:, 1]), fmt, name)
+        ratios = np.array(list(NUMBER_RATIOS.values()))
+        errorbars(axes[2], (ratios, mid[:, 0], mid[:, 1]), fmt, name)
     axes[2].set_xscale("log")
     axes[2].set_xticks(list(NUMBER_RATIOS.values()), ["1/8", "1/4", "1", "4", "8"])
     axes[2].minorticks_off()
@@ -330,8 +305,8 @@ def fig17(res, outdir):
     run = res["tableII_987_beta0"]
     for species, fmt, name in (("heavy", "s", "$P_1$ (heavy)"), ("light", "o", "$P_2$ (light)")):
         kurt = run.slab_scalar(0.5, "x", "kurtosis", species)
-        curve(ax, positive(run.slab_pdf(0.5, "x", species)), fmt, f"{name}, kurtosis {kurt:.2f}",
-              mfc="none")
+        errorbars(ax, positive(run.slab_pdf(0.5, "x", species)), fmt,
+                  f"{name}, kurtosis {kurt:.2f}", mfc="none")
     gaussian(ax)
     ax.set_yscale("log")
     ax.set_xlim(-6, 6)
@@ -349,7 +324,7 @@ FIGURES = (fig1, fig2, fig3, fig4, fig6, fig7, fig8, fig9, fig13, fig14, fig15, 
 def main():
     outdir = Path(sys.argv[1] if len(sys.argv) > 1 else "results/barrat-trizac-2002")
     res = Results(outdir)
-    tables = compare.table_rows(outdir)
+    tables = compare.table_rows(res)
     compare.plot_tables(tables, outdir / "tables.png")
     rows = list(tables)
     for make in FIGURES:

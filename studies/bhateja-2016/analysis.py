@@ -17,18 +17,17 @@ the paper's Eq. (1)) and `particle` (each grain once), both about the local (sla
 mean velocity, and `plain` (each grain once, about the centre-of-mass velocity).
 Units: d, m, sqrt(d/g): W = V_p^2, T / (m g d) = T.
 """
-import csv
 import math
-import re
 import sys
 from pathlib import Path
 
-import h5py
 import numpy as np
 import yaml
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fitting import MODELS, fit_model, loglog_slope  # noqa: E402
+from fitting import MODELS, fit_model
+from gran import comparison
+from gran.fits import power_law
+from gran.study import StudyFolder, read_fits
 
 HERE = Path(__file__).resolve().parent
 PAPER = yaml.safe_load((HERE / "paper.yaml").read_text())
@@ -48,25 +47,17 @@ LIFT_OFF = 1.0  # W = Gamma for A = d: no lift-off below 1 (T_z = 0 in the paper
 
 # --- reading ----------------------------------------------------------------------------------
 
-def _float(text):
-    return float(text) if text not in ("", None) else math.nan
-
-
 class Study:
     """The runs of one study: table rows, grouped by point, with the scaled temperatures."""
 
     def __init__(self, directory, name):
         self.directory, self.name = Path(directory), name
-        path = self.directory / f"{name}.study.csv"
-        if not path.exists():
-            raise FileNotFoundError(f"{path} is missing (make reproduce-bhateja-2016)")
-        with open(path, newline="") as f:
-            self.rows = list(csv.DictReader(f))
-
-    @staticmethod
-    def point(row):
-        """The point of a run: its name up to the first swept key."""
-        return re.split(r"_(?:frequency|sample_interval|measurement)[-0-9.e+]", row["run"])[0]
+        try:
+            self.folder = StudyFolder(self.directory, name)
+        except FileNotFoundError as e:
+            raise FileNotFoundError(f"{e} (make reproduce-bhateja-2016)") from None
+        self.table = self.folder.table
+        self.rows = self.table.rows
 
     def definitions(self):
         """The temperature definitions this study's runs report (vertical component)."""
@@ -75,16 +66,15 @@ class Study:
                 if row.get(LT + self.vertical(row) + suffix) not in (None, "")]
 
     def points(self):
-        return sorted({self.point(r) for r in self.rows})
+        return self.table.points()
 
     @staticmethod
     def vertical(row):
         """Name of the vertical component: T_z (3D) or T_y (2D, vibration along y)."""
         return "T_z" if row.get(LT + "T_z") not in (None, "") else "T_y"
 
-    @staticmethod
-    def get(row, key):
-        return _float(row.get(key)), _float(row.get(key + ".error"))
+    def get(self, row, key):
+        return self.table.value_and_error(row, key)
 
     def tbar(self, row, definition="volume", component=None):
         """Scaled temperature T_a / (m V_p^2) of a run: (value, error). component None: vertical;
@@ -97,18 +87,16 @@ class Study:
         c = component or self.vertical(row)
         return self.get(row, LT + c + DEFINITIONS[definition][1])
 
-    @staticmethod
-    def w(row):
+    def w(self, row):
         """W = V_p^2/(d g) (NaN without gravity)."""
-        return _float(row.get(LT + "W"))
+        return self.table.number(row, LT + "W")
 
-    @staticmethod
-    def vp(row):
-        return _float(row[LT + "peak_velocity"])
+    def vp(self, row):
+        return self.table.number(row, LT + "peak_velocity")
 
     def runs(self, point):
         """The runs of a point sorted by V_p (= by W at fixed A)."""
-        return sorted((r for r in self.rows if self.point(r) == point), key=self.vp)
+        return sorted(self.table.runs(point), key=self.vp)
 
     def curve(self, point, definition="volume", component=None, scaled=True):
         """(W, value, error) arrays of one point."""
@@ -124,18 +112,15 @@ class Study:
                 return r
         raise KeyError(f"{self.name}: no run of {point} at W = {w}")
 
-    def h5(self, row):
-        return h5py.File(self.directory / f"{row['run']}.h5", "r")
-
     def profile(self, row):
         """Local profiles of a run: dict z, T (vertical, about the slab-and-phase mean), T_error,
         T_plain, T_plain_error (vertical, about the centre-of-mass velocity of all grains; NaN in
         results made before gran wrote it), phi, phi_error, grains, bed (mask of the slabs of
         gran's volume average), W, Vp."""
-        with self.h5(row) as f:
-            g = f["observables/local_temperature"]
+        with self.folder.run(row) as run:
+            g = run.root["observables/local_temperature"]
             c = "T_z" if "T_z_profile" in g else "T_y"
-            scene = yaml.safe_load(f["parameters/scene"][()])
+            scene = run.scene
             obs = next(o for o in scene["observables"] if o["type"] == "local_temperature")
             grains = g["grains_per_slab"][:]
             occupancy = obs.get("min_occupancy", 0.1)
@@ -189,8 +174,8 @@ def w2(w, y, tol=W2_TOLERANCE):
 def alpha_over(w, vp, t, lo, hi):
     """alpha of T ~ V_p^alpha over lo <= W <= hi (T > 0): (alpha, error, points)."""
     m = (w >= lo * (1 - 1e-6)) & (w <= hi * (1 + 1e-6)) & (t > 0)
-    a, e = loglog_slope(vp[m], t[m])
-    return a, e, int(m.sum())
+    fit = power_law(vp[m], t[m])
+    return fit.exponent, fit.exponent_error, int(m.sum())
 
 
 def ratio(a, ea, b, eb):
@@ -334,7 +319,7 @@ def rest_height(directory, dim, case):
     rest = load(directory, f"rest-{dim.lower()}")
     if rest is None:
         return None
-    run = next(r for r in rest.rows if rest.point(r) == f"rest{dim.lower()}_{case}")
+    run = rest.table.runs(f"rest{dim.lower()}_{case}")[0]
     return rest.get(run, "observables.barycentric_height.h_cm")
 
 
@@ -386,8 +371,8 @@ def lid_alpha(study, point, definition):
     """alpha of T_z ~ V_p^alpha at g = 0 (OLS in log-log, as gran's study fits), its error and the
     log prefactor."""
     vp, t, _ = lid_curve(study, point, definition)
-    a, e = loglog_slope(vp, t[:, 0])
-    return a, e, float(np.mean(np.log(t[:, 0]) - a * np.log(vp)))
+    fit = power_law(vp, t[:, 0])
+    return fit.exponent, fit.exponent_error, fit.log_prefactor
 
 
 def fig6_rows(directory):
@@ -399,11 +384,10 @@ def fig6_rows(directory):
     rows = []
     paper = PAPER["fig6"]["result_alpha"]
     if path.exists():
-        with open(path, newline="") as f:
-            for r in csv.DictReader(f):
-                definition = "particle" if r["fit"].startswith("lid_alpha_particle") else "volume"
-                rows.append((f"fig6_alpha_{r['group'] or r['fit']}_{definition}", paper,
-                             _float(r["theta"]), _float(r["theta_error"])))
+        for fit in read_fits(path).values():
+            definition = "particle" if fit.name.startswith("lid_alpha_particle") else "volume"
+            rows.append((f"fig6_alpha_{fit.group or fit.name}_{definition}", paper, fit.theta,
+                         fit.theta_error))
     if study is not None:
         for point in study.points():
             for d in study.definitions():
@@ -492,8 +476,8 @@ def fig11_data(directory):
         return None
     out = {d: {} for d in study.definitions()}
     for r in study.rows:
-        m = re.search(r"_A([0-9.]+)_W([0-9.]+)$", study.point(r))
-        amp, wv = float(m.group(1)), float(m.group(2))
+        # the points are named after A/d and W (amp2d_A1_W4.52): the same numbers from the table
+        amp, wv = study.table.number(r, "drivers.0.amplitude"), round(study.w(r), 2)
         for d in study.definitions():
             out[d][(amp, wv)] = study.temperature(r, d)
     return out
@@ -649,24 +633,10 @@ def all_rows(directory):
     return rows
 
 
-def _cell(x, fmt):
-    if x is None or (isinstance(x, float) and math.isnan(x)):
-        return ""
-    return fmt.format(x) if isinstance(x, (int, float, np.floating, np.integer)) else str(x)
-
-
-def write_csv(rows, path):
-    with open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(("quantity", "paper", "measured", "error"))
-        for q, paper, measured, error in rows:
-            w.writerow((q, _cell(paper, "{:g}"), _cell(measured, "{:.6g}"), _cell(error, "{:.3g}")))
-
-
 def main():
     directory = Path(sys.argv[1] if len(sys.argv) > 1 else "results/bhateja-2016")
     rows = all_rows(directory)
-    write_csv(rows, directory / "comparison.csv")
+    comparison.write(rows, directory / "comparison.csv")
     print(f"{directory / 'comparison.csv'}: {len(rows)} rows")
 
 

@@ -13,19 +13,12 @@ Table III algebraic fits (dashed/dotted, labelled "paper").
 import sys
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(1, str(HERE.parent))
-from figure_style import label, save  # noqa: E402
-from analysis import (LIFT_OFF, W_PAPER_END, fig11_data, lid_alpha, lid_curve,  # noqa: E402
-                      load, parameter_alphas, parameter_curves, paper_algebraic, peak, rest_height)
-from fitting import MODELS, fit_model  # noqa: E402
+from analysis import (LIFT_OFF, W_PAPER_END, fig11_data, lid_alpha, lid_curve, load,
+                      parameter_alphas, parameter_curves, paper_algebraic, peak, rest_height)
+from fitting import MODELS, fit_model
+from gran.style import label, plt, save
 
 CASES = (("smooth", "C0"), ("rough", "C3"))
 # marker, face (None: filled) and line per temperature definition
@@ -308,7 +301,7 @@ def engines(directory, out):
             for point in study.points():
                 if point.startswith("engines_dem_kn"):
                     r = study.at(point, wv)
-                    kn.append(float(point.removeprefix("engines_dem_kn").replace("e", "e+")))
+                    kn.append(study.table.number(r, "engine.stiffness"))
                     a, ea = study.tbar(r, d)
                     b, eb = study.tbar(ref, d)
                     v.append((a / b, a / b * np.hypot(ea / a, eb / b)))

@@ -1,18 +1,17 @@
-"""Least-squares helpers of the Bhateja et al. 2016 analysis (numpy only: Debian's python3 has no
-scipy).
+"""The Table III fits of the Bhateja et al. 2016 analysis.
 
-- `fit_model`: weighted nonlinear least squares (Levenberg-Marquardt) with the parameter
-  covariance (J^T W J)^-1 scaled by the reduced chi^2 (as scipy's curve_fit with
-  absolute_sigma=False), and R^2 = 1 - SS_res / SS_tot (unweighted) of the fitted curve.
 - `ALGEBRAIC`, `EXPONENTIAL`: the two forms of Table III, a (1 + c W^-b) and a (1 + c e^-bW).
   For a fixed b both are linear in (a, a c), so the starting point is the best b on a grid with
   (a, a c) from linear least squares: no hand-picked starting values.
-- `loglog_slope`: ordinary least squares of log y against log x, slope and its standard error
-  from the residuals (none with two points): the power-law exponents of Tables I-II and Fig. 10.
-"""
-import math
+- `fit_model`: one form fitted from that start by weighted nonlinear least squares
+  (gran.fits.levenberg_marquardt: covariance errors scaled by the reduced chi^2, R^2).
 
+The power-law exponents of Tables I-II and Figs. 6, 10 are gran.fits.power_law (ordinary least
+squares in log-log, errors from the residuals).
+"""
 import numpy as np
+
+from gran.fits import levenberg_marquardt
 
 
 def algebraic(w, p):
@@ -45,66 +44,12 @@ def _start(w, y, weight, basis, grid):
     return best[1]
 
 
-def _jacobian(model, w, p):
-    """Forward-difference Jacobian of model(w, p) with respect to p."""
-    f0 = model(w, p)
-    jac = np.empty((len(w), len(p)))
-    for k in range(len(p)):
-        h = 1e-7 * max(abs(p[k]), 1e-3)
-        q = p.copy()
-        q[k] += h
-        jac[:, k] = (model(w, q) - f0) / h
-    return jac
-
-
 def fit_model(name, w, y, sigma=None, iterations=500):
-    """Fit Table III form `name` to (w, y) weighted by 1/sigma^2.
+    """Fit Table III form `name` to (w, y) weighted by 1/sigma^2 (gran.fits.levenberg_marquardt
+    from the best grid start).
 
     Returns dict: p (a, b, c), err (standard errors), chi2_reduced, r2, n."""
     model, basis, grid = MODELS[name]
     w, y = np.asarray(w, float), np.asarray(y, float)
     weight = np.ones_like(y) if sigma is None else 1 / np.asarray(sigma, float) ** 2
-    p = _start(w, y, weight, basis, grid)
-    lam = 1e-3
-    chi2 = float(np.sum(weight * (y - model(w, p)) ** 2))
-    for _ in range(iterations):
-        jac = _jacobian(model, w, p)
-        jtw = jac.T * weight
-        a_mat, g = jtw @ jac, jtw @ (y - model(w, p))
-        step = np.linalg.solve(a_mat + lam * np.diag(np.diag(a_mat)), g)
-        trial = p + step
-        chi2_trial = float(np.sum(weight * (y - model(w, trial)) ** 2))
-        if np.isfinite(chi2_trial) and chi2_trial < chi2:
-            converged = chi2 - chi2_trial < 1e-12 * max(chi2, 1e-300)
-            p, chi2, lam = trial, chi2_trial, lam / 3
-            if converged:
-                break
-        else:
-            lam *= 4
-            if lam > 1e12:
-                break
-    dof = len(y) - len(p)
-    jac = _jacobian(model, w, p)
-    try:
-        cov = np.linalg.inv((jac.T * weight) @ jac) * (chi2 / dof if dof > 0 else math.nan)
-        err = np.sqrt(np.abs(np.diag(cov)))
-    except np.linalg.LinAlgError:
-        err = np.full(len(p), math.nan)
-    resid = y - model(w, p)
-    r2 = 1 - float(np.sum(resid**2) / np.sum((y - y.mean()) ** 2))
-    return {"p": p, "err": err, "chi2_reduced": chi2 / dof if dof > 0 else math.nan,
-            "r2": r2, "n": len(y)}
-
-
-def loglog_slope(x, y):
-    """Slope of log y against log x (ordinary least squares) and its standard error."""
-    lx, ly = np.log(np.asarray(x, float)), np.log(np.asarray(y, float))
-    n = len(lx)
-    if n < 2:
-        return math.nan, math.nan
-    slope, intercept = np.polyfit(lx, ly, 1)
-    if n < 3:
-        return float(slope), math.nan
-    resid = ly - (slope * lx + intercept)
-    se = math.sqrt(float(np.sum(resid**2)) / (n - 2) / float(np.sum((lx - lx.mean()) ** 2)))
-    return float(slope), se
+    return levenberg_marquardt(model, w, y, _start(w, y, weight, basis, grid), sigma, iterations)

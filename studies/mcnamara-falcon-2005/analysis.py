@@ -1,19 +1,19 @@
 """Reading the McNamara & Falcon 2005 study results, and the physics the figures and checks share.
 
 `Sweep` reads the table and the power-law fits of sweep.yaml (`sweep.study.csv`,
-`sweep.fits.csv`); `Snapshot` one run of snapshots.yaml (trajectory frames and the vertical
-density profile). The rest is plain physics: the restitution law of Eq. (1), the piston's
-position (two joined parabolas), and the local packing fraction of every disk of a frame from its
-Voronoi cell, which the Fig. 3 cluster criterion uses.
+`sweep.fits.csv`, through gran.study); `Snapshot` one run of snapshots.yaml (trajectory frames and
+the vertical density profile, through gran.results). The rest is plain physics: the restitution
+law of Eq. (1), the piston's position (two joined parabolas), and the local packing fraction of
+every disk of a frame from its Voronoi cell, which the Fig. 3 cluster criterion uses.
 """
-import csv
 import math
 from pathlib import Path
 
-import h5py
 import matplotlib.tri as mtri
 import numpy as np
-import yaml
+
+from gran.results import Run
+from gran.study import StudyFolder
 
 # The five cases of sweep.yaml: point name -> (gravity on, restitution as in the paper's panels).
 CASES = {
@@ -82,52 +82,39 @@ def voronoi_areas(points, width, floor, ceiling):
     return areas
 
 
-def _float(text):
-    """A number of the study table (empty cells, e.g. counters' errors, are NaN)."""
-    return float(text) if text not in ("", None) else math.nan
-
-
 class Sweep:
     """The runs and fits of sweep.yaml in a result folder."""
 
     def __init__(self, directory):
         self.directory = Path(directory)
-        table = self.directory / "sweep.study.csv"
-        fits = self.directory / "sweep.fits.csv"
-        for path in (table, fits):
-            if not path.exists():
-                raise FileNotFoundError(f"{path} is missing: run the study first "
-                                        "(make reproduce-mcnamara-falcon-2005)")
-        with open(table, newline="") as f:
-            self.rows = list(csv.DictReader(f))
-        with open(fits, newline="") as f:
-            self.fit_rows = list(csv.DictReader(f))
-
-    @staticmethod
-    def case(row):
-        """The point (case) of a run: its name up to the swept keys."""
-        return row["run"].split("_frequency")[0]
+        try:
+            self.study = StudyFolder(self.directory, "sweep")
+        except FileNotFoundError as e:
+            raise FileNotFoundError(f"{e} (make reproduce-mcnamara-falcon-2005)") from None
+        if not self.study.fits:
+            raise FileNotFoundError(f"{self.directory / 'sweep.fits.csv'} is missing: run the "
+                                    "study first (make reproduce-mcnamara-falcon-2005)")
+        self.table = self.study.table
 
     def run(self, case, n, f):
         """The table row of one run (case, n layers, frequency f [Hz])."""
-        for row in self.rows:
-            if (self.case(row) == case and int(row["species.0.count"]) == round(n * LAYER)
+        for row in self.table.runs(case):
+            if (int(row["species.0.count"]) == round(n * LAYER)
                     and int(row["drivers.0.frequency"]) == f):
                 return row
         raise KeyError(f"no run {case}, n = {n}, f = {f} Hz in {self.directory}")
 
     def layers(self, case):
         """The n values swept for a case, sorted."""
-        return sorted({int(r["species.0.count"]) / LAYER for r in self.rows
-                       if self.case(r) == case})
+        return sorted({int(r["species.0.count"]) / LAYER for r in self.table.runs(case)})
 
     def frequencies(self, case):
         """The frequencies [Hz] swept for a case, sorted."""
-        return sorted({int(r["drivers.0.frequency"]) for r in self.rows if self.case(r) == case})
+        return sorted({int(r["drivers.0.frequency"]) for r in self.table.runs(case)})
 
     def value(self, row, quantity):
         """A summary quantity of a run and its error (NaN when not reported)."""
-        return _float(row.get(quantity)), _float(row.get(quantity + ".error"))
+        return self.table.value_and_error(row, quantity)
 
     def pressure_vs_n(self, case, f, wall="upper"):
         """Time-averaged pressure [N/m] on a wall against n at frequency f: (n, P, error)."""
@@ -151,22 +138,16 @@ class Sweep:
         return lower / (upper + weight), math.hypot(e_lower, e_upper) / (upper + weight)
 
     def exponent(self, case, quantity, n):
-        """The fit of X ~ V^theta (X = T, Nc, dI, P) at n layers: dict with theta, theta_error,
-        max_deviation and valid (False when a point deviates by 0.25 or more in log)."""
-        name = f"theta_{quantity}_{case}_count{round(n * LAYER)}"
-        for r in self.fit_rows:
-            if r["fit"] == name:
-                return {"theta": _float(r["theta"]), "theta_error": _float(r["theta_error"]),
-                        "max_deviation": _float(r["max_deviation"]),
-                        "valid": r["valid"] == "1", "points": int(r["points"])}
-        raise KeyError(f"no fit {name} in sweep.fits.csv")
+        """The fit of X ~ V^theta (X = T, Nc, dI, P) at n layers (gran.study.StudyFit: theta,
+        theta_error, max_deviation, valid False when a point deviates by 0.25 or more in log)."""
+        return self.study.fit(f"theta_{quantity}_{case}_count{round(n * LAYER)}")
 
     def exponents(self, case, quantity):
         """theta(n) of one quantity: (n, theta, error, valid) arrays."""
         n = np.array(self.layers(case))
         fits = [self.exponent(case, quantity, k) for k in n]
-        return (n, np.array([f["theta"] for f in fits]), np.array([f["theta_error"] for f in fits]),
-                np.array([f["valid"] for f in fits]))
+        return (n, np.array([f.theta for f in fits]), np.array([f.theta_error for f in fits]),
+                np.array([f.valid for f in fits]))
 
 
 class Snapshot:
@@ -177,26 +158,25 @@ class Snapshot:
         if not self.path.exists():
             raise FileNotFoundError(f"{self.path} is missing: run snapshots.yaml first "
                                     "(make reproduce-mcnamara-falcon-2005)")
-        self.file = h5py.File(self.path, "r")
-        self.scene = yaml.safe_load(self.file["parameters/scene"][()])
-        self.width, self.height = (float(x) for x in self.file["particles/all/box/edges"][:])
+        self.run = Run.open(self.path)
+        self.scene = self.run.scene
+        self.width, self.height = (float(x) for x in self.run.box_lengths)
         self.diameter = float(self.scene["species"][0]["diameter"])
-        wall = self.file["drivers/vibrating_wall"]
-        self.amplitude = float(wall["amplitude"][()])
-        self.frequency = float(wall["frequency"][()])
+        self.amplitude = self.run.number("drivers/vibrating_wall/amplitude")
+        self.frequency = self.run.number("drivers/vibrating_wall/frequency")
 
     @property
     def frames(self):
         """Number of stored frames."""
-        return self.file["particles/all/position/value"].shape[0]
+        return self.run.frames
 
     def positions(self, k):
         """Disk centres of frame k, shape (N, 2) [m]."""
-        return self.file["particles/all/position/value"][k]
+        return self.run.positions(k)
 
     def time(self, k):
         """Time of frame k [s]."""
-        return float(self.file["particles/all/position/time"][k])
+        return self.run.frame_time(k)
 
     def piston(self, k):
         """Piston height at frame k [m] (0: its lowest position)."""
@@ -221,9 +201,7 @@ class Snapshot:
 
     def profile(self):
         """Time-averaged packing fraction against height: (y [m], phi, error)."""
-        g = self.file["observables/profiles"]
-        return (g["position"][:], g["steel/packing_fraction"][:],
-                g["steel/packing_fraction_error"][:])
+        return self.run.profile("observables/profiles/steel/packing_fraction")
 
 
 def mean_and_error(samples):

@@ -9,23 +9,16 @@ from RESULTS_DIR and writes there fig1.png ... fig4.png and comparison.csv
 the sentence quoted next to each group of rows below). Error bars are one standard error (block
 errors written by gran; fit errors from the residuals).
 """
-import csv
 import sys
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+from matplotlib.collections import EllipseCollection
+from matplotlib.patches import Rectangle
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import EllipseCollection  # noqa: E402
-from matplotlib.patches import Rectangle  # noqa: E402
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(1, str(Path(__file__).resolve().parents[1]))
-from figure_style import label, save  # noqa: E402
-from analysis import (CASES, QUANTITIES, Snapshot, Sweep, mean_and_error,  # noqa: E402
-                      restitution)
+from analysis import CASES, QUANTITIES, Snapshot, Sweep, mean_and_error, restitution
+from gran import comparison
+from gran.style import label, plt, save
 
 R0, V0 = 0.95, 0.3  # Eq. (1) for stainless steel (Sec. II A)
 SNAPSHOTS = {"r(v)": "fig3a_g_rv_n3_f30", "0.7": "fig3b_g_r0.7_n3_f30"}  # snapshots.yaml
@@ -39,8 +32,6 @@ MARKERS = {"T": ("D", "T"), "Nc": ("*", r"$N_c$"), "dI": ("^", r"$\Delta I$"), "
 FIG4_PANELS = (("g0_r0.95", "(a) r = 0.95, g = 0"), ("g0_rv", "(b) r = r(v), g = 0"),
                ("g_r0.95", "(c) r = 0.95, g"), ("g_rv", "(d) r = r(v), g"))
 
-
-# --- plotting helpers ------------------------------------------------------------------------
 
 # --- Fig. 1: the restitution law ---------------------------------------------------------------
 
@@ -228,16 +219,16 @@ def exponent_rows(sweep):
     for n in sweep.layers("g0_r0.95"):
         for q, paper in classical.items():
             fit = sweep.exponent("g0_r0.95", q, n)
-            rows.append((f"theta_{q}_g0_rconst_n{n:g}", paper, fit["theta"], fit["theta_error"]))
+            rows.append((f"theta_{q}_g0_rconst_n{n:g}", paper, fit.theta, fit.theta_error))
     # "in Fig. 4b [g = 0 and r = r(v)], θ ≈ 1 for the pressure and temperature when n > 2."
     for q in ("P", "T"):
         for n in (n for n in sweep.layers("g0_rv") if n > 2):
             fit = sweep.exponent("g0_rv", q, n)
-            rows.append((f"theta_{q}_g0_rv_n{n:g}", 1, fit["theta"], fit["theta_error"]))
+            rows.append((f"theta_{q}_g0_rv_n{n:g}", 1, fit.theta, fit.theta_error))
     # "This experiment gives a V^{3/2} pressure scaling (•-mark on Fig. 4b) for n = 1 ... Only
     #  the simulation with r = r(v) can reproduce these results (see Fig. 4b)".
     fit = sweep.exponent("g0_rv", "P", 1)
-    rows.append(("theta_P_g0_rv_n1", 1.5, fit["theta"], fit["theta_error"]))
+    rows.append(("theta_P_g0_rv_n1", 1.5, fit.theta, fit.theta_error))
     # "in Fig. 4d [g ≠ 0 and r = r(v)], the scaling exponents are not shown for n ≥ 3, because
     #  the dependence of P, T, Nc and ΔI on V is no longer a simple power law. (More precisely,
     #  we do not plot a point on Fig. 4 when |log X_observed − log X_fitted| ≥ 0.25 for any of
@@ -246,7 +237,7 @@ def exponent_rows(sweep):
     for n in (n for n in sweep.layers("g_rv") if n >= 3):
         for q in QUANTITIES:
             rows.append((f"fig4d_powerlaw_{q}_n{n:g}", 0,
-                         int(sweep.exponent("g_rv", q, n)["valid"]), None))
+                         int(sweep.exponent("g_rv", q, n).valid), None))
     return rows
 
 
@@ -262,15 +253,6 @@ def momentum_rows(sweep):
     return rows
 
 
-def write_csv(rows, path):
-    """comparison.csv: quantity, paper, measured, error (empty when there is none)."""
-    with open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(("quantity", "paper", "measured", "error"))
-        for q, paper, measured, error in rows:
-            w.writerow((q, paper, f"{measured:.6g}", "" if error is None else f"{error:.3g}"))
-
-
 def main():
     outdir = Path(sys.argv[1] if len(sys.argv) > 1 else "results/mcnamara-falcon-2005")
     sweep = Sweep(outdir)
@@ -280,7 +262,7 @@ def main():
     rows += fig4(sweep, outdir)
     rows += exponent_rows(sweep)
     rows += momentum_rows(sweep)
-    write_csv(rows, outdir / "comparison.csv")
+    comparison.write(rows, outdir / "comparison.csv")
     print(f"fig1.png ... fig4.png; comparison.csv: {len(rows)} rows")
     for q, paper, measured, error in rows:
         err = "" if error is None else f" +- {error:.3g}"

@@ -1,4 +1,5 @@
-// The plotting script turns a result file into a PNG (Debian's python3 with h5py and matplotlib).
+// The plotting script turns a result file into a PNG (Debian's python3 with h5py and matplotlib;
+// the package gran found through PYTHONPATH, as the Makefile sets it).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -10,6 +11,10 @@
 
 namespace gran {
 namespace {
+
+const std::string kPlotResult = "PYTHONPATH=" + std::string(GRAN_SOURCE_DIR) +
+                                "/python /usr/bin/python3 " + std::string(GRAN_SOURCE_DIR) +
+                                "/studies/plot_result.py ";
 
 TEST(PlotScript, WritesAPngForAHeatedMixtureResult) {
     const char* scene = R"(
@@ -28,8 +33,8 @@ run: {equilibration: 10, measurement: 50}
     testing::run_yaml(scene, "plot");
     const auto dir = testing::temp_dir();
     const auto png = dir / "plot.png";
-    const std::string cmd = "/usr/bin/python3 " + std::string(GRAN_SOURCE_DIR) + "/studies/plot_result.py " +
-                            (dir / "plot.h5").string() + " -o " + png.string() + " 2>&1";
+    const std::string cmd =
+        kPlotResult + (dir / "plot.h5").string() + " -o " + png.string() + " 2>&1";
     FILE* pipe = popen(cmd.c_str(), "r");
     ASSERT_NE(pipe, nullptr);
     std::string out;
@@ -50,8 +55,7 @@ TEST(PlotScript, RefusesAFileThatIsNotAResult) {
     const auto dir = testing::temp_dir();
     const auto bogus = dir / "bogus.h5";
     std::ofstream(bogus) << "not hdf5";
-    const std::string cmd = "/usr/bin/python3 " + std::string(GRAN_SOURCE_DIR) + "/studies/plot_result.py " +
-                            bogus.string() + " > /dev/null 2>&1";
+    const std::string cmd = kPlotResult + bogus.string() + " > /dev/null 2>&1";
     const int status = std::system(cmd.c_str());
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_NE(WEXITSTATUS(status), 0);

@@ -147,6 +147,31 @@ TEST_F(Study, FourPointSweepRunsTwoAtATimeMergesAndResumeRecomputesNothing) {
     EXPECT_NE(fourth.output.find("4 ran, 0 reused"), std::string::npos) << fourth.output;
 }
 
+// Readers group runs by their point from the table itself, never by parsing run names.
+TEST_F(Study, TableNamesThePointOfEveryRunInAPointColumn) {
+    const std::string file = study_file(
+        "points: [{name: hot_gas, set: {drivers.0.strength: 0.02}}, {name: cold}]\n"
+        "grid: {interactions.alpha: [0.8, 0.9]}\n"
+        "set: {run.measurement: 50}\n");
+    const std::string out = path("out");
+    const auto done = run_gran({"-q", "study", file, "-o", out, "-j", "2"});
+    ASSERT_EQ(done.exit_code, 0) << done.output;
+    std::ifstream csv(out + "/study.study.csv");
+    std::string header, line;
+    ASSERT_TRUE(std::getline(csv, header));
+    EXPECT_EQ(header.rfind("run,point,drivers.0.strength,interactions.alpha,", 0), 0u) << header;
+    std::vector<std::string> rows;
+    while (std::getline(csv, line)) {  // the first two fields: run, point
+        const auto second_comma = line.find(',', line.find(',') + 1);
+        rows.push_back(line.substr(0, second_comma));
+    }
+    const std::vector<std::string> expected{"hot_gas_alpha0.8,hot_gas", "hot_gas_alpha0.9,hot_gas",
+                                            "cold_alpha0.8,cold", "cold_alpha0.9,cold"};
+    EXPECT_EQ(rows, expected);
+    gran::h5::File f = gran::h5::File::open_read(out + "/study.study.h5");
+    EXPECT_EQ(f.root().shape("summary/points"), std::vector<std::size_t>{4});
+}
+
 TEST(PowerLawFit, RecoversTheExponentOfAnExactPowerLaw) {
     const std::vector<double> x{1, 2, 4, 8, 16};
     std::vector<double> y;
