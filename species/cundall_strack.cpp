@@ -8,14 +8,8 @@
 namespace gran {
 namespace {
 
-struct CundallStrack {
-    struct Pair {
-        CundallStrackContact contact;  // k_n, gamma_n, k_t, gamma_t, mu
-        double duration = 0;
-        double restitution = 1;
-    };
+struct CundallStrack : soft_contact::LawBase<CundallStrackContact> {
     static constexpr bool history = true;
-    static constexpr bool impact_dependent = false;
 
     static Pair resolve(const Params& p, const ContactPartner& a, const ContactPartner& b,
                         const LawContext&) {
@@ -35,15 +29,6 @@ struct CundallStrack {
     }
     static double elastic_energy(const Pair& c, double delta, double spring2) {
         return 0.5 * c.contact.k_n * delta * delta + 0.5 * c.contact.k_t * spring2;
-    }
-    static double duration(const Pair& c) { return c.duration; }
-    static double restitution(const Pair& c) { return c.restitution; }
-    static double nominal_restitution(const Pair& c) { return c.restitution; }
-    static bool rotates(const Pair& c) { return c.contact.mu > 0; }
-    static double normal_restitution(const Pair& c, double) { return c.restitution; }
-    static double tangential_restitution(const Pair&) { return -1.0; }
-    static const char* hard_sphere_problem(const Pair& c) {
-        return soft_contact::hard_limit_problem(c.contact.mu);
     }
 };
 

@@ -11,14 +11,9 @@
 namespace gran {
 namespace {
 
-struct HertzMindlin {
-    struct Pair {
-        HertzMindlinContact contact;  // k_n, gamma_n, k_t, gamma_t, mu
-        double duration = 0;          // at the reference speed
-        double restitution = 1;
-    };
+// Its Pair's duration is the head-on contact time at the reference speed.
+struct HertzMindlin : soft_contact::LawBase<HertzMindlinContact> {
     static constexpr bool history = true;
-    static constexpr bool impact_dependent = false;
 
     // Tsuji: gamma_n = alpha(e) sqrt(m_eff k_n); at impact speed v the head-on duration is
     // t_c = tau_c(alpha) (m_eff / k_n)^(2/5) v^(-1/5) (species/contact_laws.hpp), inverted for k_n
@@ -59,15 +54,6 @@ struct HertzMindlin {
     static double elastic_energy(const Pair& c, double delta, double spring2) {
         const double root = std::sqrt(delta);
         return 0.4 * c.contact.k_n * delta * delta * root + 0.5 * c.contact.k_t * root * spring2;
-    }
-    static double duration(const Pair& c) { return c.duration; }
-    static double restitution(const Pair& c) { return c.restitution; }
-    static double nominal_restitution(const Pair& c) { return c.restitution; }
-    static bool rotates(const Pair& c) { return c.contact.mu > 0; }
-    static double normal_restitution(const Pair& c, double) { return c.restitution; }
-    static double tangential_restitution(const Pair&) { return -1.0; }
-    static const char* hard_sphere_problem(const Pair& c) {
-        return soft_contact::hard_limit_problem(c.contact.mu);
     }
 };
 

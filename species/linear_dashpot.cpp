@@ -10,14 +10,8 @@
 namespace gran {
 namespace {
 
-struct LinearDashpot {
-    struct Pair {
-        LinearDashpotContact contact;  // k_n, gamma_n, gamma_t, mu
-        double duration = 0;           // head-on contact duration t_c
-        double restitution = 1;        // requested e
-    };
+struct LinearDashpot : soft_contact::LawBase<LinearDashpotContact> {
     static constexpr bool history = false;
-    static constexpr bool impact_dependent = false;
 
     static Pair resolve(const Params& p, const ContactPartner& a, const ContactPartner& b,
                         const LawContext&) {
@@ -36,16 +30,6 @@ struct LinearDashpot {
     }
     static double elastic_energy(const Pair& c, double delta, double /*spring2*/) {
         return 0.5 * c.contact.k_n * delta * delta;
-    }
-    static double duration(const Pair& c) { return c.duration; }
-    static double restitution(const Pair& c) { return c.restitution; }
-    static double nominal_restitution(const Pair& c) { return c.restitution; }
-    static bool rotates(const Pair& c) { return c.contact.mu > 0; }
-    // Hard limit (event-driven engine).
-    static double normal_restitution(const Pair& c, double) { return c.restitution; }
-    static double tangential_restitution(const Pair&) { return -1.0; }
-    static const char* hard_sphere_problem(const Pair& c) {
-        return soft_contact::hard_limit_problem(c.contact.mu);
     }
 };
 

@@ -4,9 +4,9 @@
 // damping) is read from them for two partners. The laws' own files resolve the rest.
 //
 // Masses: the damping that yields a requested restitution depends on the reduced mass
-// m_eff = m_i m_j / (m_i + m_j) (Bhateja et al. 2016, Eq. A9); a wall has infinite mass, m_eff = m_i
-// (taken as it is, not as 1 / (1/m_i + 0), which may round). The contact distance is
-// R_i + R_j, or R_i against a wall.
+// m_eff = m_i m_j / (m_i + m_j) (Bhateja et al. 2016, Eq. A9); a wall has infinite mass, m_eff =
+// m_i (taken as it is, not as 1 / (1/m_i + 0), which may round). The contact distance is R_i + R_j,
+// or R_i against a wall.
 #include <fmt/format.h>
 
 #include <string>
@@ -70,7 +70,8 @@ inline Request read(const Params& p, const ContactPartner& a, const ContactPartn
     if (r.k_n == 0 && r.t_c == 0) {
         p.fail("stiffness", "a soft contact needs `stiffness` (k_n) or `contact_time` (t_c)");
     }
-    if (r.k_n > 0 && r.t_c > 0) p.fail("contact_time", "give `stiffness` or `contact_time`, not both");
+    if (r.k_n > 0 && r.t_c > 0)
+        p.fail("contact_time", "give `stiffness` or `contact_time`, not both");
     r.mu = p.real("friction");
     r.gamma_t = p.real("tangential_damping");
     if (p.has("tangential_damping_ratio")) r.gamma_t_ratio = p.real("tangential_damping_ratio");
@@ -108,5 +109,33 @@ inline const char* hard_limit_problem(double mu) {
                     "constant_restitution)"
                   : nullptr;
 }
+
+// What one soft contact resolves to: its kernel's parameters (`Contact`: k_n, gamma_n, ..., mu),
+// the head-on duration t_c the time step is a fraction of, and the requested restitution.
+template <class Contact>
+struct Resolved {
+    Contact contact;
+    double duration = 0;
+    double restitution = 1;
+};
+
+// What every soft-contact law offers besides its resolution, force and energy: the duration and
+// restitution it was asked for, rotation when it has friction, and its hard limit on the
+// event-driven engine (a smooth collision with the requested restitution; none with friction).
+// A law derives from it: struct MyLaw : soft_contact::LawBase<MyContact> { ... }.
+template <class Contact>
+struct LawBase {
+    using Pair = Resolved<Contact>;
+    static constexpr bool impact_dependent = false;
+    static double duration(const Pair& c) { return c.duration; }
+    static double restitution(const Pair& c) { return c.restitution; }
+    static double nominal_restitution(const Pair& c) { return c.restitution; }
+    static bool rotates(const Pair& c) { return c.contact.mu > 0; }
+    static double normal_restitution(const Pair& c, double) { return c.restitution; }
+    static double tangential_restitution(const Pair&) { return -1.0; }
+    static const char* hard_sphere_problem(const Pair& c) {
+        return hard_limit_problem(c.contact.mu);
+    }
+};
 
 }  // namespace gran::soft_contact
