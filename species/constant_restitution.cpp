@@ -3,6 +3,7 @@
 // every contact. Against a wall only the normal component is reflected (the walls of the paper,
 // Sec. III A), so beta applies to grain-grain collisions.
 #include "libgran/engines/register_law.hpp"
+#include "species/tangential_restitution.hpp"
 
 namespace gran {
 namespace {
@@ -16,7 +17,7 @@ struct ConstantRestitution {
 
     static Pair resolve(const Params& p, const ContactPartner&, const ContactPartner& b,
                         const LawContext&) {
-        return {p.real("alpha"), b.wall ? -1.0 : p.real("beta")};
+        return {p.real("alpha"), hard_sphere::tangential_restitution(p, b)};
     }
     static double normal_restitution(const Pair& c, double /*impact_speed*/) { return c.alpha; }
     static double tangential_restitution(const Pair& c) { return c.beta; }
@@ -36,10 +37,7 @@ const bool registered = register_law<ConstantRestitution>(
     "hard-particle collision with constant normal (alpha) and tangential (beta) restitution",
     {real("alpha", "1", "", "normal restitution coefficient alpha_ij (1 = elastic)", 0, 1, true,
           false),
-     real("beta", "-1", "",
-          "tangential restitution coefficient beta_ij of grain-grain collisions (-1 = smooth, no "
-          "rotation; 1 = perfectly rough); wall collisions reflect the normal component only",
-          -1, 1)},
+     hard_sphere::tangential_restitution_key()},
     kDescription);
 
 }  // namespace

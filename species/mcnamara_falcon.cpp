@@ -5,6 +5,7 @@
 // species/impact_restitution.hpp.
 #include "libgran/engines/register_law.hpp"
 #include "species/impact_restitution.hpp"
+#include "species/tangential_restitution.hpp"
 
 namespace gran {
 namespace {
@@ -19,7 +20,7 @@ struct McNamaraFalcon {
 
     static Pair resolve(const Params& p, const ContactPartner&, const ContactPartner& b,
                         const LawContext&) {
-        return {p.real("r0"), p.real("v0"), b.wall ? -1.0 : p.real("beta")};
+        return {p.real("r0"), p.real("v0"), hard_sphere::tangential_restitution(p, b)};
     }
     static double normal_restitution(const Pair& c, double impact_speed) {
         return mcnamara_falcon_restitution(std::fabs(impact_speed), c.r0, c.v0);
@@ -46,9 +47,7 @@ const bool registered = register_law<McNamaraFalcon>(
      real("v0", "", "velocity",
           "yield velocity v0 (McNamara & Falcon 2005: 0.3 m/s for stainless steel)", 0, 1e308,
           true),
-     real("beta", "-1", "",
-          "tangential restitution coefficient beta_ij of grain-grain collisions (-1 = smooth)", -1,
-          1)},
+     hard_sphere::tangential_restitution_key()},
     kDescription);
 
 }  // namespace

@@ -4,6 +4,7 @@
 // species/impact_restitution.hpp.
 #include "libgran/engines/register_law.hpp"
 #include "species/impact_restitution.hpp"
+#include "species/tangential_restitution.hpp"
 
 namespace gran {
 namespace {
@@ -17,7 +18,7 @@ struct Viscoelastic {
 
     static Pair resolve(const Params& p, const ContactPartner&, const ContactPartner& b,
                         const LawContext&) {
-        return {p.real("gamma"), b.wall ? -1.0 : p.real("beta")};
+        return {p.real("gamma"), hard_sphere::tangential_restitution(p, b)};
     }
     static double normal_restitution(const Pair& c, double impact_speed) {
         return viscoelastic_restitution(std::fabs(impact_speed), c.gamma);
@@ -42,9 +43,7 @@ const bool registered = register_law<Viscoelastic>(
           "gamma = A kappa^(2/5) of the viscoelastic series e = 1 - C1 gamma v^(1/5) + C2 "
           "gamma^2 v^(2/5)",
           0, 1e308),
-     real("beta", "-1", "",
-          "tangential restitution coefficient beta_ij of grain-grain collisions (-1 = smooth)", -1,
-          1)},
+     hard_sphere::tangential_restitution_key()},
     kDescription);
 
 }  // namespace
