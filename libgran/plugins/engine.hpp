@@ -95,6 +95,18 @@ struct EnginePlugin : PluginInfo {
     }
 };
 
+// Sets make2 and make3 to build Runner<2> and Runner<3> (each constructible from the scene, the
+// drivers and the observables).
+template <template <int> class Runner>
+void set_runner(EnginePlugin& p) {
+    p.make2 = [](const Scene& s, DriverList<2>& d, ObservableList<2>& o) {
+        return std::unique_ptr<EngineRunner<2>>(std::make_unique<Runner<2>>(s, d, o));
+    };
+    p.make3 = [](const Scene& s, DriverList<3>& d, ObservableList<3>& o) {
+        return std::unique_ptr<EngineRunner<3>>(std::make_unique<Runner<3>>(s, d, o));
+    };
+}
+
 using EngineRegistry = Registry<EnginePlugin>;
 
 // Introduction of the engines in docs/scene-reference.md (`gran list --markdown`).

@@ -319,12 +319,7 @@ contact time an isolated head-on collision achieves on the engine itself at this
     // Rough grains start at rest in rotation (the beds of Bhateja et al. 2016 start from rest).
     p.thermal_initial_spin = false;
     p.check = check_dem;
-    p.make2 = [](const Scene& s, DriverList<2>& d, ObservableList<2>& o) {
-        return std::unique_ptr<EngineRunner<2>>(std::make_unique<DemRunner<2>>(s, d, o));
-    };
-    p.make3 = [](const Scene& s, DriverList<3>& d, ObservableList<3>& o) {
-        return std::unique_ptr<EngineRunner<3>>(std::make_unique<DemRunner<3>>(s, d, o));
-    };
+    set_runner<DemRunner>(p);
     return p;
 }());
 

@@ -229,12 +229,7 @@ gravity makes micro-bounces of period 2 tc (docs/physics.md); the watchdog stops
 them.)md";
     p.binary_collisions = true;
     p.check = check_event_driven;
-    p.make2 = [](const Scene& s, DriverList<2>& d, ObservableList<2>& o) {
-        return std::unique_ptr<EngineRunner<2>>(std::make_unique<EventDrivenRunner<2>>(s, d, o));
-    };
-    p.make3 = [](const Scene& s, DriverList<3>& d, ObservableList<3>& o) {
-        return std::unique_ptr<EngineRunner<3>>(std::make_unique<EventDrivenRunner<3>>(s, d, o));
-    };
+    set_runner<EventDrivenRunner>(p);
     return p;
 }());
 
