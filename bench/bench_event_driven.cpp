@@ -118,15 +118,17 @@ EngineCounters counters_minus(const EngineCounters& a, const EngineCounters& b) 
 }
 
 template <int D>
-Result run_case(const Case& c, const Options& opt) {
-    Result res;
-    res.c = c;
-    const double t_setup = wall_seconds();
-    const SpeciesTable table = monodisperse(c.n);
+Box<D> periodic_box(const Case& c) {
     Box<D> box;
     const double vd = D == 2 ? std::numbers::pi / 4 : std::numbers::pi / 6;
     box.length = Vec<D>::Constant(std::pow(double(c.n) * vd / c.phi, 1.0 / D));
     box.periodic.fill(true);
+    return box;
+}
+
+// Simple lattice, Maxwellian velocities at T = 1 and, with --shuffle, random labels.
+template <int D>
+Particles<D> initial_particles(const Box<D>& box, const SpeciesTable& table, const Options& opt) {
     Rng rng_place = make_rng(opt.seed, Stream::Placement);
     Rng rng_vel = make_rng(opt.seed, Stream::Velocities);
     Particles<D> p = place_lattice<D>(box, table, rng_place);
@@ -140,43 +142,21 @@ Result run_case(const Case& c, const Options& opt) {
             std::swap(p.v[k - 1], p.v[j]);
         }
     }
-    const double e0 = kinetic_energy<D>(p);
-    const Vec<D> p0 = total_momentum<D>(p);
-    const std::vector<Vec<D>> v0 = p.v;
-    EventDrivenEngine<D> engine(box, table, elastic(table, D), std::move(p), EngineSettings{});
-    res.setup_s = wall_seconds() - t_setup;
+    return p;
+}
 
-    // Equilibration: equil_per_particle collisions per particle = equil_per_particle * N / 2.
-    const double t_equil = wall_seconds();
-    const auto n_equil = static_cast<std::uint64_t>(opt.equil_per_particle * double(c.n) / 2);
-    engine.advance(kInf, n_equil);
-    res.equil_s = wall_seconds() - t_equil;
-    {
-        std::size_t changed = 0;
-        const auto& v = engine.particles().v;
-        for (std::size_t i = 0; i < c.n; ++i) changed += v[i] != v0[i] ? 1 : 0;
-        res.melted_fraction = double(changed) / double(c.n);
-    }
+// The fraction of particles whose velocity is no longer v0.
+template <int D>
+double changed_fraction(const Particles<D>& p, const std::vector<Vec<D>>& v0) {
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < v0.size(); ++i) changed += p.v[i] != v0[i] ? 1 : 0;
+    return double(changed) / double(v0.size());
+}
 
-    // Timed part.
-    const std::uint64_t n_timed = std::max<std::uint64_t>(
-        opt.timed_min, static_cast<std::uint64_t>(opt.timed_per_particle * double(c.n)));
-    const EngineCounters before = engine.counters();
-    const double w0 = wall_seconds();
-    const double c0 = cpu_seconds();
-    engine.advance(kInf, before.collisions + n_timed);
-    const double c1 = cpu_seconds();
-    const double w1 = wall_seconds();
-    res.delta = counters_minus(engine.counters(), before);
-    res.collisions = res.delta.collisions;
-    res.cpu_s = c1 - c0;
-    res.wall_s = w1 - w0;
-
-    // Sanity: elastic dynamics conserve energy and momentum; the lattice must have melted.
-    engine.synchronize();
-    const double e1 = kinetic_energy<D>(engine.particles());
-    res.energy_rel_err = std::abs(e1 - e0) / e0;
-    res.momentum_err = (total_momentum<D>(engine.particles()) - p0).norm() / std::sqrt(2 * e0);
+// Sanity: elastic dynamics conserve energy and momentum; the lattice must have melted. Warns and
+// clears res.ok otherwise.
+void check_sanity(Result& res, std::uint64_t n_timed) {
+    const Case& c = res.c;
     if (res.collisions != n_timed) {
         std::fprintf(stderr, "WARNING %s: %llu collisions timed, %llu requested\n",
                      c.name().c_str(), static_cast<unsigned long long>(res.collisions),
@@ -202,6 +182,48 @@ Result run_case(const Case& c, const Options& opt) {
             c.name().c_str(), res.melted_fraction);
         res.ok = false;
     }
+}
+
+template <int D>
+Result run_case(const Case& c, const Options& opt) {
+    Result res;
+    res.c = c;
+    const double t_setup = wall_seconds();
+    const SpeciesTable table = monodisperse(c.n);
+    const Box<D> box = periodic_box<D>(c);
+    Particles<D> p = initial_particles<D>(box, table, opt);
+    const double e0 = kinetic_energy<D>(p);
+    const Vec<D> p0 = total_momentum<D>(p);
+    const std::vector<Vec<D>> v0 = p.v;
+    EventDrivenEngine<D> engine(box, table, elastic(table, D), std::move(p), EngineSettings{});
+    res.setup_s = wall_seconds() - t_setup;
+
+    // Equilibration: equil_per_particle collisions per particle = equil_per_particle * N / 2.
+    const double t_equil = wall_seconds();
+    const auto n_equil = static_cast<std::uint64_t>(opt.equil_per_particle * double(c.n) / 2);
+    engine.advance(kInf, n_equil);
+    res.equil_s = wall_seconds() - t_equil;
+    res.melted_fraction = changed_fraction<D>(engine.particles(), v0);
+
+    // Timed part.
+    const std::uint64_t n_timed = std::max<std::uint64_t>(
+        opt.timed_min, static_cast<std::uint64_t>(opt.timed_per_particle * double(c.n)));
+    const EngineCounters before = engine.counters();
+    const double w0 = wall_seconds();
+    const double c0 = cpu_seconds();
+    engine.advance(kInf, before.collisions + n_timed);
+    const double c1 = cpu_seconds();
+    const double w1 = wall_seconds();
+    res.delta = counters_minus(engine.counters(), before);
+    res.collisions = res.delta.collisions;
+    res.cpu_s = c1 - c0;
+    res.wall_s = w1 - w0;
+
+    engine.synchronize();
+    const double e1 = kinetic_energy<D>(engine.particles());
+    res.energy_rel_err = std::abs(e1 - e0) / e0;
+    res.momentum_err = (total_momentum<D>(engine.particles()) - p0).norm() / std::sqrt(2 * e0);
+    check_sanity(res, n_timed);
     return res;
 }
 
@@ -299,16 +321,8 @@ std::optional<Options> parse(int argc, char** argv) {
     return opt;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    const auto parsed = parse(argc, argv);
-    if (!parsed) {
-        usage(stderr);
-        return 2;
-    }
-    const Options& opt = *parsed;
-
+// The cases of the geometries and sizes that pass the filters.
+std::vector<Case> select_cases(const Options& opt) {
     std::vector<Case> cases;
     const std::vector<std::pair<int, double>> geometries = {
         {2, 0.1}, {2, 0.5}, {3, 0.1}, {3, 0.2}, {3, 0.3}};
@@ -322,11 +336,10 @@ int main(int argc, char** argv) {
             if (keep) cases.push_back(c);
         }
     }
-    if (cases.empty()) {
-        std::fprintf(stderr, "gran_bench: no case matches the filters\n");
-        return 2;
-    }
+    return cases;
+}
 
+void print_header(const Options& opt) {
     std::printf("gran_bench: event-driven engine, elastic monodisperse, periodic, one core%s%s\n",
                 opt.quick ? " (--quick)" : "", opt.shuffle ? " (--shuffle)" : "");
     std::printf("equilibration %g collisions/particle; timed max(%llu, %g N) collisions\n",
@@ -338,26 +351,24 @@ int main(int argc, char** argv) {
         "stale/c", "cpu_s", "dE/E", "check");
     std::printf("%s\n", header.c_str());
     std::fflush(stdout);
+}
 
-    std::vector<Result> results;
-    bool all_ok = true;
-    for (const Case& c : cases) {
-        Result r = c.dim == 2 ? run_case<2>(c, opt) : run_case<3>(c, opt);
-        all_ok = all_ok && r.ok;
-        std::printf(
-            "%s\n",
-            fmt::format("{:<20} {:>3} {:>7} {:>5} {:>12.4g} {:>12.4g} {:>12.4g} {:>8.3f} "
-                        "{:>8.3f} {:>8.3f} {:>7.2f} {:>9.1e} {:>9}",
-                        c.name(), c.dim, c.n, c.phi, r.rate_cpu(), r.rate_wall(), r.events_per_s(),
-                        r.per_collision(r.delta.events), r.per_collision(r.delta.cell_crossings),
-                        r.per_collision(r.delta.stale_events), r.cpu_s, r.energy_rel_err,
-                        r.ok ? "ok" : "FAILED")
-                .c_str());
-        std::fflush(stdout);
-        results.push_back(r);
-    }
+void print_row(const Result& r) {
+    const Case& c = r.c;
+    std::printf(
+        "%s\n",
+        fmt::format("{:<20} {:>3} {:>7} {:>5} {:>12.4g} {:>12.4g} {:>12.4g} {:>8.3f} "
+                    "{:>8.3f} {:>8.3f} {:>7.2f} {:>9.1e} {:>9}",
+                    c.name(), c.dim, c.n, c.phi, r.rate_cpu(), r.rate_wall(), r.events_per_s(),
+                    r.per_collision(r.delta.events), r.per_collision(r.delta.cell_crossings),
+                    r.per_collision(r.delta.stale_events), r.cpu_s, r.energy_rel_err,
+                    r.ok ? "ok" : "FAILED")
+            .c_str());
+    std::fflush(stdout);
+}
 
-    // How the rate degrades from N = 1e4 to the other sizes, per (dim, phi).
+// How the rate degrades from N = 1e4 to the other sizes, per (dim, phi).
+void print_size_ratios(const std::vector<Result>& results) {
     std::map<std::pair<int, double>, std::map<std::size_t, double>> by_geometry;
     for (const auto& r : results) by_geometry[{r.c.dim, r.c.phi}][r.c.n] = r.rate_cpu();
     for (const auto& [g, rates] : by_geometry) {
@@ -369,22 +380,51 @@ int main(int argc, char** argv) {
                         g.first, g.second, n, rate / base->second, base->second, rate);
         }
     }
+}
 
-    if (!opt.csv.empty()) {
-        const std::filesystem::path path(opt.csv);
-        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-        std::ofstream out(path);
-        if (!out) {
-            std::fprintf(stderr, "gran_bench: cannot write %s\n", opt.csv.c_str());
-            return 1;
-        }
-        out << "case,engine,dimension,N,packing_fraction,rate,unit\n";
-        for (const auto& r : results) {
-            out << fmt::format("{},event_driven,{},{},{},{:.0f},collisions/s\n", r.c.name(),
-                               r.c.dim, r.c.n, r.c.phi, r.rate_cpu());
-        }
-        std::printf("wrote %s\n", opt.csv.c_str());
+// --csv: false when the file cannot be written.
+bool write_csv(const std::string& csv, const std::vector<Result>& results) {
+    const std::filesystem::path path(csv);
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    std::ofstream out(path);
+    if (!out) {
+        std::fprintf(stderr, "gran_bench: cannot write %s\n", csv.c_str());
+        return false;
     }
+    out << "case,engine,dimension,N,packing_fraction,rate,unit\n";
+    for (const auto& r : results) {
+        out << fmt::format("{},event_driven,{},{},{},{:.0f},collisions/s\n", r.c.name(), r.c.dim,
+                           r.c.n, r.c.phi, r.rate_cpu());
+    }
+    std::printf("wrote %s\n", csv.c_str());
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const auto parsed = parse(argc, argv);
+    if (!parsed) {
+        usage(stderr);
+        return 2;
+    }
+    const Options& opt = *parsed;
+    const std::vector<Case> cases = select_cases(opt);
+    if (cases.empty()) {
+        std::fprintf(stderr, "gran_bench: no case matches the filters\n");
+        return 2;
+    }
+    print_header(opt);
+    std::vector<Result> results;
+    bool all_ok = true;
+    for (const Case& c : cases) {
+        Result r = c.dim == 2 ? run_case<2>(c, opt) : run_case<3>(c, opt);
+        all_ok = all_ok && r.ok;
+        print_row(r);
+        results.push_back(r);
+    }
+    print_size_ratios(results);
+    if (!opt.csv.empty() && !write_csv(opt.csv, results)) return 1;
     if (!all_ok) {
         std::fprintf(stderr, "gran_bench: sanity check FAILED (see warnings above)\n");
         return 1;

@@ -29,8 +29,8 @@
 #include "bench/feature_scenes.hpp"
 #include "bench/minimal_event_driven.hpp"
 #include "libgran/core/h5.hpp"
-#include "libgran/scene/placement.hpp"
 #include "libgran/run/run.hpp"
+#include "libgran/scene/placement.hpp"
 #include "libgran/scene/scene.hpp"
 
 namespace {
@@ -326,26 +326,19 @@ std::string spread(const std::vector<double>& r) {
     return fmt::format("{:.3f} [{:.3f}-{:.3f}]", median(r), *lo, *hi);
 }
 
-}  // namespace
+// N, and under --quick shorter runs and a single round.
+std::size_t apply_quick(Options& opt, RunLength& run) {
+    if (!opt.quick) return 10000;
+    opt.repeats = 1;
+    opt.minimal_repeats = 1;
+    run.ed_equilibration = 10;
+    run.ed_measurement = 40;
+    run.dem_measurement = 0.4;
+    run.samples = 40;
+    return 2000;
+}
 
-int main(int argc, char** argv) {
-    auto parsed = parse(argc, argv);
-    if (!parsed) {
-        usage(stderr);
-        return 2;
-    }
-    Options opt = *parsed;
-    RunLength run;
-    std::size_t n = 10000;
-    if (opt.quick) {
-        n = 2000;
-        opt.repeats = 1;
-        opt.minimal_repeats = 1;
-        run.ed_equilibration = 10;
-        run.ed_measurement = 40;
-        run.dem_measurement = 0.4;
-        run.samples = 40;
-    }
+std::vector<Geometry> select_geometries(const Options& opt, std::size_t n) {
     std::vector<Geometry> geometries;
     for (const auto& [dim, phi] :
          std::vector<std::pair<int, double>>{{2, 0.1}, {2, 0.5}, {3, 0.1}, {3, 0.3}}) {
@@ -355,50 +348,45 @@ int main(int argc, char** argv) {
             keep = keep || geometry_name(g).find(s) != std::string::npos;
         if (keep) geometries.push_back(g);
     }
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("gran_bench_features_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    bool ok = true;
+    return geometries;
+}
 
-    std::printf(
-        "gran_bench_features%s: CPU time ratios, medians of %d interleaved pairs [min-max]\n",
-        opt.quick ? " (--quick)" : "", opt.repeats);
-    std::printf(
-        "event-driven runs: %g + %g collisions per particle, %d samples; DEM: t = %g, "
-        "%d samples\n\n",
-        run.ed_equilibration, run.ed_measurement, run.samples, run.dem_measurement, run.samples);
+// Part 1 (the table's rows as measured); ok becomes false when a check fails.
+std::vector<MinimalComparison> bench_minimal(const std::vector<Geometry>& geometries,
+                                             const RunLength& run, const Options& opt,
+                                             const std::filesystem::path& dir, bool& ok) {
     std::vector<MinimalComparison> minimal;
-    if (opt.minimal) {
-        std::printf(
-            "1. bare gas through gran run vs the minimal kernel (bench/minimal_event_driven)\n");
-        std::printf("%-18s %12s %12s %22s %10s %10s  %s\n", "geometry", "gran coll/s",
-                    "kernel coll/s", "gran/kernel CPU/coll", "omega gran", "kernel", "check");
-        for (const auto& g : geometries) {
-            auto mc = compare_minimal(g, run, opt.minimal_repeats, dir);
-            const bool within = median(mc.ratios) <= 1.10;
-            ok = ok && mc.physics_ok && within;
-            std::printf("%-18s %12.4g %12.4g %22s %10.5f %10.5f  %s%s\n", geometry_name(g).c_str(),
-                        mc.gran_rate, mc.kernel_rate, spread(mc.ratios).c_str(), mc.omega_gran,
-                        mc.omega_kernel,
-                        mc.physics_ok ? "physics ok" : ("PHYSICS FAILED: " + mc.problem).c_str(),
-                        within ? ", within 10%" : ", MORE THAN 10% SLOWER");
-            std::fflush(stdout);
-            minimal.push_back(mc);
-        }
-        std::printf("\n");
-    }
-
-    std::vector<Row> rows;
-    bool any_features = !(opt.only.size() == 1 && opt.only[0] == "none");
-    if (any_features) {
-        std::printf(
-            "2. cost of each feature: CPU time per collision (DEM: per particle-step) "
-            "relative to its baseline\n");
-        std::printf("%-14s %-26s %-16s %12s %9s %22s %22s\n", "geometry", "feature", "baseline",
-                    "rate", "ev/coll", "CPU/coll ratio", "CPU/event ratio");
-    }
+    std::printf(
+        "1. bare gas through gran run vs the minimal kernel (bench/minimal_event_driven)\n");
+    std::printf("%-18s %12s %12s %22s %10s %10s  %s\n", "geometry", "gran coll/s", "kernel coll/s",
+                "gran/kernel CPU/coll", "omega gran", "kernel", "check");
     for (const auto& g : geometries) {
-        if (!any_features) break;
+        auto mc = compare_minimal(g, run, opt.minimal_repeats, dir);
+        const bool within = median(mc.ratios) <= 1.10;
+        ok = ok && mc.physics_ok && within;
+        std::printf("%-18s %12.4g %12.4g %22s %10.5f %10.5f  %s%s\n", geometry_name(g).c_str(),
+                    mc.gran_rate, mc.kernel_rate, spread(mc.ratios).c_str(), mc.omega_gran,
+                    mc.omega_kernel,
+                    mc.physics_ok ? "physics ok" : ("PHYSICS FAILED: " + mc.problem).c_str(),
+                    within ? ", within 10%" : ", MORE THAN 10% SLOWER");
+        std::fflush(stdout);
+        minimal.push_back(mc);
+    }
+    std::printf("\n");
+    return minimal;
+}
+
+// Part 2: the rows of the features selected by --only ('none': no feature).
+std::vector<Row> bench_features(const std::vector<Geometry>& geometries, const RunLength& run,
+                                const Options& opt, const std::filesystem::path& dir) {
+    std::vector<Row> rows;
+    if (opt.only.size() == 1 && opt.only[0] == "none") return rows;
+    std::printf(
+        "2. cost of each feature: CPU time per collision (DEM: per particle-step) "
+        "relative to its baseline\n");
+    std::printf("%-14s %-26s %-16s %12s %9s %22s %22s\n", "geometry", "feature", "baseline", "rate",
+                "ev/coll", "CPU/coll ratio", "CPU/event ratio");
+    for (const auto& g : geometries) {
         // The thermostat's strength balances cooling at T = 1: the bare gas's collision frequency.
         Calibration cal;
         {
@@ -420,34 +408,69 @@ int main(int argc, char** argv) {
             rows.push_back(r);
         }
     }
+    return rows;
+}
+
+// --csv: false when the file cannot be written.
+bool write_csv(const std::string& csv, const std::vector<MinimalComparison>& minimal,
+               const std::vector<Row>& rows) {
+    const std::filesystem::path path(csv);
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    std::ofstream out(path);
+    if (!out) {
+        std::fprintf(stderr, "gran_bench_features: cannot write %s\n", csv.c_str());
+        return false;
+    }
+    out << "engine,dimension,N,packing_fraction,feature,baseline,rate,unit,cost_ratio,"
+           "cost_ratio_min,cost_ratio_max,event_cost_ratio,pairs\n";
+    for (const auto& mc : minimal) {
+        const auto [lo, hi] = std::minmax_element(mc.ratios.begin(), mc.ratios.end());
+        out << fmt::format(
+            "event_driven,{},{},{},bare_vs_minimal_kernel,minimal_kernel,{:.0f},"
+            "collisions/s,{:.4f},{:.4f},{:.4f},,{}\n",
+            mc.g.dim, mc.g.n, mc.g.phi, mc.gran_rate, median(mc.ratios), *lo, *hi,
+            mc.ratios.size());
+    }
+    for (const auto& r : rows) {
+        const auto [lo, hi] = std::minmax_element(r.ratios.begin(), r.ratios.end());
+        out << fmt::format("{},{},{},{},{},{},{:.0f},{},{:.4f},{:.4f},{:.4f},{:.4f},{}\n", r.engine,
+                           r.g.dim, r.g.n, r.g.phi, r.key, r.baseline, r.rate, r.unit,
+                           median(r.ratios), *lo, *hi, median(r.event_ratios), r.ratios.size());
+    }
+    std::printf("wrote %s\n", csv.c_str());
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    auto parsed = parse(argc, argv);
+    if (!parsed) {
+        usage(stderr);
+        return 2;
+    }
+    Options opt = *parsed;
+    RunLength run;
+    const std::size_t n = apply_quick(opt, run);
+    const std::vector<Geometry> geometries = select_geometries(opt, n);
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("gran_bench_features_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    bool ok = true;
+
+    std::printf(
+        "gran_bench_features%s: CPU time ratios, medians of %d interleaved pairs [min-max]\n",
+        opt.quick ? " (--quick)" : "", opt.repeats);
+    std::printf(
+        "event-driven runs: %g + %g collisions per particle, %d samples; DEM: t = %g, "
+        "%d samples\n\n",
+        run.ed_equilibration, run.ed_measurement, run.samples, run.dem_measurement, run.samples);
+    std::vector<MinimalComparison> minimal;
+    if (opt.minimal) minimal = bench_minimal(geometries, run, opt, dir, ok);
+    const std::vector<Row> rows = bench_features(geometries, run, opt, dir);
     std::filesystem::remove_all(dir);
 
-    if (!opt.csv.empty()) {
-        const std::filesystem::path path(opt.csv);
-        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-        std::ofstream out(path);
-        if (!out) {
-            std::fprintf(stderr, "gran_bench_features: cannot write %s\n", opt.csv.c_str());
-            return 1;
-        }
-        out << "engine,dimension,N,packing_fraction,feature,baseline,rate,unit,cost_ratio,"
-               "cost_ratio_min,cost_ratio_max,event_cost_ratio,pairs\n";
-        for (const auto& mc : minimal) {
-            const auto [lo, hi] = std::minmax_element(mc.ratios.begin(), mc.ratios.end());
-            out << fmt::format(
-                "event_driven,{},{},{},bare_vs_minimal_kernel,minimal_kernel,{:.0f},"
-                "collisions/s,{:.4f},{:.4f},{:.4f},,{}\n",
-                mc.g.dim, mc.g.n, mc.g.phi, mc.gran_rate, median(mc.ratios), *lo, *hi,
-                mc.ratios.size());
-        }
-        for (const auto& r : rows) {
-            const auto [lo, hi] = std::minmax_element(r.ratios.begin(), r.ratios.end());
-            out << fmt::format("{},{},{},{},{},{},{:.0f},{},{:.4f},{:.4f},{:.4f},{:.4f},{}\n",
-                               r.engine, r.g.dim, r.g.n, r.g.phi, r.key, r.baseline, r.rate, r.unit,
-                               median(r.ratios), *lo, *hi, median(r.event_ratios), r.ratios.size());
-        }
-        std::printf("wrote %s\n", opt.csv.c_str());
-    }
+    if (!opt.csv.empty() && !write_csv(opt.csv, minimal, rows)) return 1;
     if (!ok) {
         std::fprintf(stderr, "gran_bench_features: FAILED (see the minimal-kernel rows)\n");
         return 1;

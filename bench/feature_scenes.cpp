@@ -45,43 +45,21 @@ Feature observable(const std::string& type, const std::string& baseline, const s
     return {prefix + "obs_" + type, "observable " + type, baseline, engine, std::move(add)};
 }
 
-}  // namespace
-
-YAML::Node bare_scene(const std::string& engine, const Geometry& g, const RunLength& run) {
-    YAML::Node s;
-    s["dimension"] = g.dim;
-    s["seed"] = 7;
-    YAML::Node sp;
-    sp["name"] = "grain";
-    sp["count"] = g.n;
-    s["species"] = flow_list({sp});
-    s["box"]["packing_fraction"] = g.phi;
-    // A lattice start (random insertion cannot reach phi = 0.5 in 2D), melted by the
-    // equilibration.
-    s["initial"]["placement"] = "lattice";
-    s["initial"]["temperature"] = 1.0;
-    if (engine == "dem") {
-        // Soft spheres, elastic (e = 1), frictionless: the DEM counterpart of the bare gas.
-        // Contacts last t_c = 0.01, 1/60 (phi = 0.1) to 1/10 (phi = 0.3) of the mean free time
-        // of spheres at T = 1; dt = t_c / 50.
-        s["engine"]["type"] = "dem";
-        s["interactions"]["law"] = "linear_dashpot";
-        s["interactions"]["contact_time"] = 0.01;
-        s["run"]["unit"] = "time";
-        s["run"]["equilibration"] = 0.0;
-        s["run"]["measurement"] = run.dem_measurement;
-        s["run"]["sample_interval"] = run.dem_measurement / run.samples;
-    } else {
-        s["run"]["equilibration"] = run.ed_equilibration;
-        s["run"]["measurement"] = run.ed_measurement;
-        s["run"]["sample_interval"] = run.ed_measurement / run.samples;
-    }
-    return s;
+// Adds the observable `type` with the parameter axis: the last axis.
+std::function<void(YAML::Node&, const Geometry&)> on_last_axis(const char* type) {
+    return [type](YAML::Node& s, const Geometry& g) {
+        add_observable(s, type, {{"axis", YAML::Node(g.last_axis())}});
+    };
 }
 
-std::vector<Feature> features(const Calibration& cal) {
-    std::vector<Feature> f;
-    const std::string ed = "event_driven", dem = "dem";
+// Adds the observable `type` with its default parameters.
+std::function<void(YAML::Node&, const Geometry&)> plain(const char* type) {
+    return [type](YAML::Node& s, const Geometry&) { add_observable(s, type); };
+}
+
+// Event-driven: the bare gas, then laws and species.
+void add_law_features(std::vector<Feature>& f, const Calibration& cal) {
+    const std::string ed = "event_driven";
     f.push_back({"bare", "bare gas (elastic smooth, periodic)", "", ed, {}});
     f.push_back({"rotations", "rough particles (beta = 1: rotation, energy conserved)", "bare", ed,
                  [](YAML::Node& s, const Geometry&) { s["interactions"]["beta"] = 1.0; }});
@@ -125,6 +103,11 @@ std::vector<Feature> features(const Calibration& cal) {
                      b["count"] = g.n - g.n / 2;
                      s["species"] = flow_list({a, b});
                  }});
+}
+
+// Event-driven: walls, gravity and the wall drivers.
+void add_wall_features(std::vector<Feature>& f) {
+    const std::string ed = "event_driven";
     f.push_back({"walls", "static elastic walls on the last axis", "bare", ed, add_walls});
     f.push_back({"gravity", "gravity (scale height L/2) vs walls", "walls", ed, add_gravity});
     f.push_back({"sawtooth_wall", "sawtooth walls (v0 = 1, both) vs static walls", "walls", ed,
@@ -152,18 +135,15 @@ std::vector<Feature> features(const Calibration& cal) {
                      d["frequency"] = 0.25;
                      add_driver(s, d);
                  }});
-    const auto last_axis = [](const char* type) {
-        return [type](YAML::Node& s, const Geometry& g) {
-            add_observable(s, type, {{"axis", YAML::Node(g.last_axis())}});
-        };
-    };
-    const auto plain = [](const char* type) {
-        return [type](YAML::Node& s, const Geometry&) { add_observable(s, type); };
-    };
+}
+
+// Event-driven: observables and trajectory output.
+void add_observable_features(std::vector<Feature>& f) {
+    const std::string ed = "event_driven";
     f.push_back(observable("temperatures", "bare", ed, plain("temperatures")));
     f.push_back(observable("velocity_pdf", "bare", ed, plain("velocity_pdf")));
     f.push_back(observable("angular_velocity_pdf", "rotations", ed, plain("angular_velocity_pdf")));
-    f.push_back(observable("profiles", "bare", ed, last_axis("profiles")));
+    f.push_back(observable("profiles", "bare", ed, on_last_axis("profiles")));
     f.push_back({"obs_profiles_no_pressure", "observable profiles, pressure: false", "bare", ed,
                  [](YAML::Node& s, const Geometry& g) {
                      add_observable(
@@ -174,13 +154,17 @@ std::vector<Feature> features(const Calibration& cal) {
     f.push_back(
         observable("restitution_statistics", "inelastic", ed, plain("restitution_statistics")));
     f.push_back(observable("kinetic_energy", "bare", ed, plain("kinetic_energy")));
-    f.push_back(observable("slab_velocity_pdf", "bare", ed, last_axis("slab_velocity_pdf")));
-    f.push_back(observable("wall_pressure", "walls", ed, last_axis("wall_pressure")));
-    f.push_back(observable("local_temperature", "walls", ed, last_axis("local_temperature")));
-    f.push_back(observable("barycentric_height", "walls", ed, last_axis("barycentric_height")));
+    f.push_back(observable("slab_velocity_pdf", "bare", ed, on_last_axis("slab_velocity_pdf")));
+    f.push_back(observable("wall_pressure", "walls", ed, on_last_axis("wall_pressure")));
+    f.push_back(observable("local_temperature", "walls", ed, on_last_axis("local_temperature")));
+    f.push_back(observable("barycentric_height", "walls", ed, on_last_axis("barycentric_height")));
     f.push_back({"frames", "trajectory output (output.frames: 20)", "bare", ed,
                  [](YAML::Node& s, const Geometry&) { s["output"]["frames"] = 20; }});
+}
 
+// DEM: the bare gas, laws, walls, gravity, observables and trajectory output.
+void add_dem_features(std::vector<Feature>& f) {
+    const std::string dem = "dem";
     f.push_back({"dem_bare", "DEM bare gas (elastic, frictionless, periodic)", "", dem, {}});
     f.push_back({"dem_friction", "DEM friction (cundall_strack, mu = 0.5, e = 0.9) vs e = 0.9",
                  "dem_inelastic", dem, [](YAML::Node& s, const Geometry&) {
@@ -194,11 +178,53 @@ std::vector<Feature> features(const Calibration& cal) {
         {"dem_gravity", "DEM gravity (scale height L/2) vs walls", "dem_walls", dem, add_gravity});
     f.push_back(observable("temperatures", "dem_bare", dem, plain("temperatures")));
     f.push_back(observable("velocity_pdf", "dem_bare", dem, plain("velocity_pdf")));
-    f.push_back(observable("profiles", "dem_bare", dem, last_axis("profiles")));
+    f.push_back(observable("profiles", "dem_bare", dem, on_last_axis("profiles")));
     f.push_back(observable("collision_statistics", "dem_bare", dem, plain("collision_statistics")));
     f.push_back(observable("kinetic_energy", "dem_bare", dem, plain("kinetic_energy")));
     f.push_back({"dem_frames", "DEM trajectory output (output.frames: 20)", "dem_bare", dem,
                  [](YAML::Node& s, const Geometry&) { s["output"]["frames"] = 20; }});
+}
+
+}  // namespace
+
+YAML::Node bare_scene(const std::string& engine, const Geometry& g, const RunLength& run) {
+    YAML::Node s;
+    s["dimension"] = g.dim;
+    s["seed"] = 7;
+    YAML::Node sp;
+    sp["name"] = "grain";
+    sp["count"] = g.n;
+    s["species"] = flow_list({sp});
+    s["box"]["packing_fraction"] = g.phi;
+    // A lattice start (random insertion cannot reach phi = 0.5 in 2D), melted by the
+    // equilibration.
+    s["initial"]["placement"] = "lattice";
+    s["initial"]["temperature"] = 1.0;
+    if (engine == "dem") {
+        // Soft spheres, elastic (e = 1), frictionless: the DEM counterpart of the bare gas.
+        // Contacts last t_c = 0.01, 1/60 (phi = 0.1) to 1/10 (phi = 0.3) of the mean free time
+        // of spheres at T = 1; dt = t_c / 50.
+        s["engine"]["type"] = "dem";
+        s["interactions"]["law"] = "linear_dashpot";
+        s["interactions"]["contact_time"] = 0.01;
+        s["run"]["unit"] = "time";
+        s["run"]["equilibration"] = 0.0;
+        s["run"]["measurement"] = run.dem_measurement;
+        s["run"]["sample_interval"] = run.dem_measurement / run.samples;
+    } else {
+        s["run"]["equilibration"] = run.ed_equilibration;
+        s["run"]["measurement"] = run.ed_measurement;
+        s["run"]["sample_interval"] = run.ed_measurement / run.samples;
+    }
+    return s;
+}
+
+std::vector<Feature> features(const Calibration& cal) {
+    std::vector<Feature> f;
+    add_law_features(f, cal);
+    add_wall_features(f);
+    add_observable_features(f);
+    add_dem_features(f);
     return f;
 }
 

@@ -127,112 +127,15 @@ class LocalTemperature final : public Observable<D> {
 
     void write(ResultGroup& g) const override {
         if (samples_ == 0) return;
-        g.attr("axis", std::string(component_name(axis_)));
-        g.attr("convention",
-               "T_a = m <c_a^2> / 2 (Bhateja et al. 2016, Eq. 5), c = v - u(z, drive phase)");
         ResultGroup settings = g.file_only();
-        settings.value("bin_width", width_);
-        settings.value("phase_bins", phases_);
-        settings.value("base_position", base_);
-        std::vector<double> z(slabs_);
-        for (std::size_t j = 0; j < slabs_; ++j) z[j] = (double(j) + 0.5) * width_ - base_;
-        g.array("z", z, "length");
-
-        // Each estimate is a function of the sums with some blocks left out (jackknife).
-        const Totals all = totals(nblocks_);
-        std::vector<Totals> without;
-        for (std::size_t b = 0; b < nblocks_; ++b) {
-            if (samples_in_block_[b] > 0) without.push_back(totals(b));
-        }
-        auto jack = [&](auto f) {
-            Estimate e{f(all), kNaN};  // block sums only: tau_int, n_eff unknown (NaN)
-            e.samples = samples_;
-            const double k = double(without.size());
-            if (k < 2) return e;
-            std::vector<double> r;
-            for (const auto& t : without) r.push_back(f(t));
-            double mean = 0;
-            for (double x : r) mean += x / k;
-            double var = 0;
-            for (double x : r) var += (x - mean) * (x - mean);
-            e.error = std::sqrt((k - 1) / k * var);
-            return e;
-        };
-
-        // Slabs of the bed (for the volume average): from the lowest slab a grain visited up to
-        // the highest slab holding at least min_occupancy grains on average. Contiguous: the few
-        // hot grains just above the base belong to the bed however rarely they are there (a
-        // per-slab occupancy cut would drop that slab or not from one W to the next).
-        std::vector<std::size_t> bed;
-        std::size_t lo = slabs_, hi = 0;
-        for (std::size_t j = 0; j < slabs_; ++j) {
-            if (all.count[j] > 0 && lo == slabs_) lo = j;
-            if (all.count[j] / double(samples_) >= min_occupancy_) hi = j;
-        }
-        for (std::size_t j = lo; j <= hi && j < slabs_; ++j) {
-            if (all.count[j] > 0) bed.push_back(j);
-        }
+        write_slabs(g, settings);
+        const Jackknife jack = jackknife();
+        const std::vector<std::size_t> bed = bed_slabs(jack.all);
         settings.value("bed_slabs", bed.size());
-
-        const double slab_volume = cross_section_ * width_;
-        std::vector<double> number(slabs_), phi(slabs_), phi_err(slabs_);
-        for (std::size_t j = 0; j < slabs_; ++j) {
-            const Estimate e = jack(
-                [&](const Totals& t) { return t.volume[j] / (double(t.samples) * slab_volume); });
-            phi[j] = e.value;
-            phi_err[j] = e.error;
-            number[j] = all.count[j] / double(samples_);
-        }
-        g.profile("phi", phi, phi_err);
-        g.array("grains_per_slab", number);
-
+        write_density(g, jack);
         const double scale = mass_ * peak_velocity_ * peak_velocity_;
-        for (int a = 0; a < D; ++a) {
-            const std::string c = component_name(a);
-            std::vector<double> val(slabs_), err(slabs_);
-            for (std::size_t j = 0; j < slabs_; ++j) {
-                const Estimate e = jack([&](const Totals& t) { return t.local(j, a); });
-                val[j] = e.value;
-                err[j] = e.error;
-            }
-            g.profile("T_" + c + "_profile", val, err, "energy");
-            for (std::size_t j = 0; j < slabs_; ++j) {
-                const Estimate e = jack([&](const Totals& t) { return t.plain_local(j, a); });
-                val[j] = e.value;
-                err[j] = e.error;
-            }
-            g.profile("T_" + c + "_plain_profile", val, err, "energy");
-            const Estimate tp = jack([&](const Totals& t) { return t.particle_average(a); });
-            const Estimate tv = jack([&](const Totals& t) { return t.volume_average(bed, a); });
-            const Estimate tb = jack([&](const Totals& t) { return t.plain(a); });
-            g.estimate("T_" + c, tp, "energy");
-            g.estimate("T_" + c + "_plain", tb, "energy");
-            g.estimate("T_" + c + "_volume", tv, "energy");
-            if (scale > 0) {
-                g.estimate("T_" + c + "_scaled", tp.affine(1 / scale), "");
-                g.estimate("T_" + c + "_volume_scaled", tv.affine(1 / scale), "");
-                g.estimate("T_" + c + "_plain_scaled", tb.affine(1 / scale), "");
-            }
-        }
-        // Total T = (T_x + ... ) / d_f with jackknife over the same blocks.
-        const Estimate tt = jack([&](const Totals& t) {
-            double x = 0;
-            for (int a = 0; a < D; ++a) x += t.particle_average(a) / D;
-            return x;
-        });
-        const Estimate ttv = jack([&](const Totals& t) {
-            double x = 0;
-            for (int a = 0; a < D; ++a) x += t.volume_average(bed, a) / D;
-            return x;
-        });
-        g.estimate("T", tt, "energy");
-        g.estimate("T_volume", ttv, "energy");
-        if (scale > 0) {
-            g.estimate("T_scaled", tt.affine(1 / scale), "");
-            g.estimate("T_volume_scaled", ttv.affine(1 / scale), "");
-            g.value("peak_velocity", peak_velocity_);
-            if (g_ > 0) g.value("W", peak_velocity_ * peak_velocity_ / (diameter_ * g_));
-        }
+        for (int a = 0; a < D; ++a) write_component(g, jack, bed, a, scale);
+        write_total(g, jack, bed, scale);
     }
 
   private:
@@ -312,6 +215,136 @@ class LocalTemperature final : public Observable<D> {
             }
         }
         return t;
+    }
+
+    // Each estimate is a function of the sums with some blocks left out (jackknife): the sums
+    // over all blocks and those without each block that holds samples.
+    struct Jackknife {
+        Totals all;
+        std::vector<Totals> without;
+        std::size_t samples = 0;
+
+        template <class F>
+        Estimate operator()(F f) const {
+            Estimate e{f(all), kNaN};  // block sums only: tau_int, n_eff unknown (NaN)
+            e.samples = samples;
+            const double k = double(without.size());
+            if (k < 2) return e;
+            std::vector<double> r;
+            for (const auto& t : without) r.push_back(f(t));
+            double mean = 0;
+            for (double x : r) mean += x / k;
+            double var = 0;
+            for (double x : r) var += (x - mean) * (x - mean);
+            e.error = std::sqrt((k - 1) / k * var);
+            return e;
+        }
+    };
+
+    Jackknife jackknife() const {
+        Jackknife j{totals(nblocks_), {}, samples_};
+        for (std::size_t b = 0; b < nblocks_; ++b) {
+            if (samples_in_block_[b] > 0) j.without.push_back(totals(b));
+        }
+        return j;
+    }
+
+    // Attributes, settings and the slab centres z.
+    void write_slabs(ResultGroup& g, ResultGroup& settings) const {
+        g.attr("axis", std::string(component_name(axis_)));
+        g.attr("convention",
+               "T_a = m <c_a^2> / 2 (Bhateja et al. 2016, Eq. 5), c = v - u(z, drive phase)");
+        settings.value("bin_width", width_);
+        settings.value("phase_bins", phases_);
+        settings.value("base_position", base_);
+        std::vector<double> z(slabs_);
+        for (std::size_t j = 0; j < slabs_; ++j) z[j] = (double(j) + 0.5) * width_ - base_;
+        g.array("z", z, "length");
+    }
+
+    // Slabs of the bed (for the volume average): from the lowest slab a grain visited up to the
+    // highest slab holding at least min_occupancy grains on average. Contiguous: the few hot
+    // grains just above the base belong to the bed however rarely they are there (a per-slab
+    // occupancy cut would drop that slab or not from one W to the next).
+    std::vector<std::size_t> bed_slabs(const Totals& all) const {
+        std::vector<std::size_t> bed;
+        std::size_t lo = slabs_, hi = 0;
+        for (std::size_t j = 0; j < slabs_; ++j) {
+            if (all.count[j] > 0 && lo == slabs_) lo = j;
+            if (all.count[j] / double(samples_) >= min_occupancy_) hi = j;
+        }
+        for (std::size_t j = lo; j <= hi && j < slabs_; ++j) {
+            if (all.count[j] > 0) bed.push_back(j);
+        }
+        return bed;
+    }
+
+    // Volume fraction phi(z) and grains per slab.
+    void write_density(ResultGroup& g, const Jackknife& jack) const {
+        const double slab_volume = cross_section_ * width_;
+        std::vector<double> number(slabs_), phi(slabs_), phi_err(slabs_);
+        for (std::size_t j = 0; j < slabs_; ++j) {
+            const Estimate e = jack(
+                [&](const Totals& t) { return t.volume[j] / (double(t.samples) * slab_volume); });
+            phi[j] = e.value;
+            phi_err[j] = e.error;
+            number[j] = jack.all.count[j] / double(samples_);
+        }
+        g.profile("phi", phi, phi_err);
+        g.array("grains_per_slab", number);
+    }
+
+    // The profiles and averages of T_a for one component a.
+    void write_component(ResultGroup& g, const Jackknife& jack, const std::vector<std::size_t>& bed,
+                         int a, double scale) const {
+        const std::string c = component_name(a);
+        std::vector<double> val(slabs_), err(slabs_);
+        for (std::size_t j = 0; j < slabs_; ++j) {
+            const Estimate e = jack([&](const Totals& t) { return t.local(j, a); });
+            val[j] = e.value;
+            err[j] = e.error;
+        }
+        g.profile("T_" + c + "_profile", val, err, "energy");
+        for (std::size_t j = 0; j < slabs_; ++j) {
+            const Estimate e = jack([&](const Totals& t) { return t.plain_local(j, a); });
+            val[j] = e.value;
+            err[j] = e.error;
+        }
+        g.profile("T_" + c + "_plain_profile", val, err, "energy");
+        const Estimate tp = jack([&](const Totals& t) { return t.particle_average(a); });
+        const Estimate tv = jack([&](const Totals& t) { return t.volume_average(bed, a); });
+        const Estimate tb = jack([&](const Totals& t) { return t.plain(a); });
+        g.estimate("T_" + c, tp, "energy");
+        g.estimate("T_" + c + "_plain", tb, "energy");
+        g.estimate("T_" + c + "_volume", tv, "energy");
+        if (scale > 0) {
+            g.estimate("T_" + c + "_scaled", tp.affine(1 / scale), "");
+            g.estimate("T_" + c + "_volume_scaled", tv.affine(1 / scale), "");
+            g.estimate("T_" + c + "_plain_scaled", tb.affine(1 / scale), "");
+        }
+    }
+
+    // Total T = (T_x + ... ) / d_f with jackknife over the same blocks; the scale V_p and W.
+    void write_total(ResultGroup& g, const Jackknife& jack, const std::vector<std::size_t>& bed,
+                     double scale) const {
+        const Estimate tt = jack([&](const Totals& t) {
+            double x = 0;
+            for (int a = 0; a < D; ++a) x += t.particle_average(a) / D;
+            return x;
+        });
+        const Estimate ttv = jack([&](const Totals& t) {
+            double x = 0;
+            for (int a = 0; a < D; ++a) x += t.volume_average(bed, a) / D;
+            return x;
+        });
+        g.estimate("T", tt, "energy");
+        g.estimate("T_volume", ttv, "energy");
+        if (scale > 0) {
+            g.estimate("T_scaled", tt.affine(1 / scale), "");
+            g.estimate("T_volume_scaled", ttv.affine(1 / scale), "");
+            g.value("peak_velocity", peak_velocity_);
+            if (g_ > 0) g.value("W", peak_velocity_ * peak_velocity_ / (diameter_ * g_));
+        }
     }
 
     // Mean position of the lower wall of the axis over one drive period (0 on a periodic axis).

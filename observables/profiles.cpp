@@ -114,95 +114,22 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
 
     void write(ResultGroup& g) const override {
         if (samples_ == 0) return;
-        const std::size_t ns = table_.size();
         std::vector<double> centres(bins_);
         for (std::size_t b = 0; b < bins_; ++b)
             centres[b] = (double(b) + 0.5) * length_ / double(bins_);
         g.array("position", centres, "length");
         g.attr("axis", std::string(component_name(axis_)));
         g.attr("middle_window", window_);
-        const double slab_volume = cross_section_ * length_ / double(bins_);
-        const double middle_volume = cross_section_ * length_ * window_;
-        const double vd = D == 2 ? std::numbers::pi / 4 : std::numbers::pi / 6;
-        // Each quantity is a function of the (species, row) sums; evaluated on all blocks and on
-        // the leave-one-block-out sums (jackknife).
-        auto profile = [&](const std::string& name, const std::string& unit, auto f) {
-            std::vector<double> val(bins_), err(bins_);
-            for (std::size_t b = 0; b < bins_; ++b) {
-                const Estimate e = jack(b, f, b < bins_ ? slab_volume : middle_volume);
-                val[b] = e.value;
-                err[b] = e.error;
-            }
-            g.profile(name, val, err, unit);
-            g.estimate("middle/" + name, jack(bins_, f, middle_volume), unit);
-        };
-        for (std::size_t s = 0; s < ns; ++s) {
-            const std::string sn = table_.species[s].name;
-            const double sig = table_.species[s].diameter;
-            profile(sn + "/number_density", "1/length^" + std::to_string(D),
-                    [s, this](const Acc& a, double vol) {
-                        return a.count(s) / (double(a.samples) * vol);
-                    });
-            profile(sn + "/packing_fraction", "", [s, sig, vd, this](const Acc& a, double vol) {
-                return a.count(s) * vd * std::pow(sig, D) / (double(a.samples) * vol);
-            });
-            profile(sn + "/T", "energy", [s](const Acc& a, double) { return a.temperature(s); });
-            for (int c = 0; c < D; ++c) {
-                profile(sn + "/T_" + component_name(c), "energy",
-                        [s, c](const Acc& a, double) { return a.component(s, c); });
-            }
-            if (rotating_)
-                profile(sn + "/T_rot", "energy",
-                        [s](const Acc& a, double) { return a.rotational(s); });
-            if (s != ref_) {
-                const std::string r = "ratios/" + sn + "_over_" + table_.species[ref_].name;
-                const std::size_t q = ref_;
-                profile(r + "/gamma", "", [s, q](const Acc& a, double) {
-                    return a.temperature(s) / a.temperature(q);
-                });
-                for (int c = 0; c < D; ++c) {
-                    profile(r + "/gamma_" + component_name(c), "", [s, q, c](const Acc& a, double) {
-                        return a.component(s, c) / a.component(q, c);
-                    });
-                }
-                if (rotating_) {
-                    profile(r + "/gamma_rot", "", [s, q](const Acc& a, double) {
-                        return a.rotational(s) / a.rotational(q);
-                    });
-                }
-            }
+        for (std::size_t s = 0; s < table_.size(); ++s) {
+            write_species(g, s);
+            if (s != ref_) write_ratios(g, s);
         }
-        profile("mixture/T", "energy",
+        profile(g, "mixture/T", "energy",
                 [](const Acc& a, double) { return a.mixture_temperature(); });
-        profile("mixture/anisotropy", "",
+        profile(g, "mixture/anisotropy", "",
                 [this](const Acc& a, double) { return a.anisotropy(axis_); });
-        // Equation of state from the local densities and temperatures (Eq. (4); Eq. (7) when
-        // monodisperse): the ideal part and with the Enskog collisional part, using the full T
-        // (isotropic P) or the component along the axis (P_aa, the paper's Fig. 4b).
-        const std::string ax = std::string(component_name(axis_));
-        const std::string pu = "energy/length^" + std::to_string(D);
-        profile("eos/P_ideal", pu,
-                [this](const Acc& a, double vol) { return eos(a, vol, -1, false); });
-        profile("eos/P_enskog", pu,
-                [this](const Acc& a, double vol) { return eos(a, vol, -1, true); });
-        profile("eos/P_ideal_" + ax + ax, pu,
-                [this](const Acc& a, double vol) { return eos(a, vol, axis_, false); });
-        profile("eos/P_enskog_" + ax + ax, pu,
-                [this](const Acc& a, double vol) { return eos(a, vol, axis_, true); });
-        if (pressure_) {
-            // Measured pressure tensor (diagonal): kinetic sum m v_a^2 per volume plus the
-            // collisional flux per volume and time.
-            for (int c = 0; c < D; ++c) {
-                const std::string cc = std::string(component_name(c)) + component_name(c);
-                profile("pressure/P_" + cc, pu, [c](const Acc& a, double vol) {
-                    return a.kinetic(c) / (double(a.samples) * vol) +
-                           a.coll[std::size_t(c)] / (a.time * vol);
-                });
-                profile("pressure/P_" + cc + "_collisional", pu, [c](const Acc& a, double vol) {
-                    return a.coll[std::size_t(c)] / (a.time * vol);
-                });
-            }
-        }
+        write_eos(g);
+        if (pressure_) write_pressure(g);
     }
 
   private:
@@ -254,6 +181,94 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         }
     };
 
+    // Each quantity is a function of the (species, row) sums; evaluated on all blocks and on the
+    // leave-one-block-out sums (jackknife): the profile over the slabs and its middle value.
+    template <class F>
+    void profile(ResultGroup& g, const std::string& name, const std::string& unit,
+                 const F& f) const {
+        const double slab_volume = cross_section_ * length_ / double(bins_);
+        const double middle_volume = cross_section_ * length_ * window_;
+        std::vector<double> val(bins_), err(bins_);
+        for (std::size_t b = 0; b < bins_; ++b) {
+            const Estimate e = jack(b, f, b < bins_ ? slab_volume : middle_volume);
+            val[b] = e.value;
+            err[b] = e.error;
+        }
+        g.profile(name, val, err, unit);
+        g.estimate("middle/" + name, jack(bins_, f, middle_volume), unit);
+    }
+
+    // Number density, packing fraction and temperatures of species s.
+    void write_species(ResultGroup& g, std::size_t s) const {
+        const double vd = D == 2 ? std::numbers::pi / 4 : std::numbers::pi / 6;
+        const std::string sn = table_.species[s].name;
+        const double sig = table_.species[s].diameter;
+        profile(
+            g, sn + "/number_density", "1/length^" + std::to_string(D),
+            [s, this](const Acc& a, double vol) { return a.count(s) / (double(a.samples) * vol); });
+        profile(g, sn + "/packing_fraction", "", [s, sig, vd, this](const Acc& a, double vol) {
+            return a.count(s) * vd * std::pow(sig, D) / (double(a.samples) * vol);
+        });
+        profile(g, sn + "/T", "energy", [s](const Acc& a, double) { return a.temperature(s); });
+        for (int c = 0; c < D; ++c) {
+            profile(g, sn + "/T_" + component_name(c), "energy",
+                    [s, c](const Acc& a, double) { return a.component(s, c); });
+        }
+        if (rotating_)
+            profile(g, sn + "/T_rot", "energy",
+                    [s](const Acc& a, double) { return a.rotational(s); });
+    }
+
+    // Temperature ratios gamma of species s over the reference species.
+    void write_ratios(ResultGroup& g, std::size_t s) const {
+        const std::string r =
+            "ratios/" + table_.species[s].name + "_over_" + table_.species[ref_].name;
+        const std::size_t q = ref_;
+        profile(g, r + "/gamma", "",
+                [s, q](const Acc& a, double) { return a.temperature(s) / a.temperature(q); });
+        for (int c = 0; c < D; ++c) {
+            profile(g, r + "/gamma_" + component_name(c), "", [s, q, c](const Acc& a, double) {
+                return a.component(s, c) / a.component(q, c);
+            });
+        }
+        if (rotating_) {
+            profile(g, r + "/gamma_rot", "",
+                    [s, q](const Acc& a, double) { return a.rotational(s) / a.rotational(q); });
+        }
+    }
+
+    // Equation of state from the local densities and temperatures (Eq. (4); Eq. (7) when
+    // monodisperse): the ideal part and with the Enskog collisional part, using the full T
+    // (isotropic P) or the component along the axis (P_aa, the paper's Fig. 4b).
+    void write_eos(ResultGroup& g) const {
+        const std::string ax = std::string(component_name(axis_));
+        const std::string pu = "energy/length^" + std::to_string(D);
+        profile(g, "eos/P_ideal", pu,
+                [this](const Acc& a, double vol) { return eos(a, vol, -1, false); });
+        profile(g, "eos/P_enskog", pu,
+                [this](const Acc& a, double vol) { return eos(a, vol, -1, true); });
+        profile(g, "eos/P_ideal_" + ax + ax, pu,
+                [this](const Acc& a, double vol) { return eos(a, vol, axis_, false); });
+        profile(g, "eos/P_enskog_" + ax + ax, pu,
+                [this](const Acc& a, double vol) { return eos(a, vol, axis_, true); });
+    }
+
+    // Measured pressure tensor (diagonal): kinetic sum m v_a^2 per volume plus the collisional
+    // flux per volume and time.
+    void write_pressure(ResultGroup& g) const {
+        const std::string pu = "energy/length^" + std::to_string(D);
+        for (int c = 0; c < D; ++c) {
+            const std::string cc = std::string(component_name(c)) + component_name(c);
+            profile(g, "pressure/P_" + cc, pu, [c](const Acc& a, double vol) {
+                return a.kinetic(c) / (double(a.samples) * vol) +
+                       a.coll[std::size_t(c)] / (a.time * vol);
+            });
+            profile(g, "pressure/P_" + cc + "_collisional", pu, [c](const Acc& a, double vol) {
+                return a.coll[std::size_t(c)] / (a.time * vol);
+            });
+        }
+    }
+
     // Pressure from the equation of state in a slab: component < 0 uses the total temperatures.
     double eos(const Acc& a, double vol, int component, bool enskog) const {
         const std::size_t ns = table_.size();
@@ -275,7 +290,8 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         if (enskog) {
             chi = theory::contact_values_mixture(D, phi, sigma, x);
             for (std::size_t i = 0; i < ns; ++i) {
-                for (std::size_t j = 0; j < ns; ++j) alpha[i * ns + j] = nominal_restitution_[i * ns + j];
+                for (std::size_t j = 0; j < ns; ++j)
+                    alpha[i * ns + j] = nominal_restitution_[i * ns + j];
             }
         }
         return theory::enskog_pressure(D, n, T, m, sigma, alpha, chi);

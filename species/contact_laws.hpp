@@ -53,7 +53,7 @@
 // contact should count (dt delta / (delta - delta_previous)); a full dt starts the spring up to one
 // step too long, enough to trip the Coulomb cap at the first step.
 //
-// Time integration (measured by tests/species/test_contact_laws.cpp with velocity Verlet):
+// Time integration (measured by tests/species/test_contact_laws*.cpp with velocity Verlet):
 //   - Evaluate the velocity-dependent forces at the predicted end-of-step velocity
 //     v + (dt/2) a_old, not at the half-step velocity, which biases e and t_c at first order in
 //     dt (e = 0.5, dt = t_c/50: -0.5 % and -0.7 %).
@@ -291,75 +291,89 @@ struct HertzTsujiCollision {
     double abs_impulse = 0;  // integral of |F_n| dt, in units m_eff v: 1 - e + 2 |min x'|
 };
 
+namespace hertz_tsuji_detail {
+
+constexpr double kSwitch = 0.01;  // x_s
+constexpr int kEndSteps = 200;    // RK4 steps in y over each end zone
+
+// An end zone in y = x^{1/4}: RK4 for the state (u, tau) from y0 to y1, u_min the smallest u so
+// far; false when u reaches 0 or is no longer finite.
+inline bool end_zone(double alpha, double& u, double& tau, double& u_min, double y0, double y1) {
+    const auto du = [alpha](double y, double uu) {
+        const double y4 = y * y * y * y;
+        return -4.0 * y4 * y4 * y / uu - 4.0 * alpha * y4;
+    };
+    const auto dt = [](double y, double uu) { return 4.0 * y * y * y / uu; };
+    const double h = (y1 - y0) / kEndSteps;
+    for (int k = 0; k < kEndSteps; ++k) {
+        const double y = y0 + k * h;
+        const double k1u = du(y, u), k1t = dt(y, u);
+        const double k2u = du(y + 0.5 * h, u + 0.5 * h * k1u),
+                     k2t = dt(y + 0.5 * h, u + 0.5 * h * k1u);
+        const double k3u = du(y + 0.5 * h, u + 0.5 * h * k2u),
+                     k3t = dt(y + 0.5 * h, u + 0.5 * h * k2u);
+        const double k4u = du(y + h, u + h * k3u), k4t = dt(y + h, u + h * k3u);
+        u += h / 6 * (k1u + 2 * k2u + 2 * k3u + k4u);
+        tau += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
+        u_min = std::min(u_min, u);
+        if (!(std::fabs(u) > 0) || !std::isfinite(u)) return false;
+    }
+    return true;
+}
+
+// One RK4 step of length h in tau in the middle zone: state (x, u).
+inline void middle_step(double alpha, double& x, double& u, double h) {
+    const auto accel = [alpha](double xx, double uu) {
+        const double s = std::sqrt(xx);
+        return -xx * s - alpha * std::sqrt(s) * uu;
+    };
+    const double k1x = u, k1u = accel(x, u);
+    const double k2x = u + 0.5 * h * k1u, k2u = accel(x + 0.5 * h * k1x, k2x);
+    const double k3x = u + 0.5 * h * k2u, k3u = accel(x + 0.5 * h * k2x, k3x);
+    const double k4x = u + h * k3u, k4u = accel(x + h * k3x, k4x);
+    x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+    u += h / 6 * (k1u + 2 * k2u + 2 * k3u + k4u);
+}
+
+// The fraction s in [0, 1] of the step (x, u) -> (x1, u1) of length h where x is back at x_s:
+// root of the cubic Hermite interpolant of x - x_s (bisection).
+inline double return_fraction(double x, double u, double x1, double u1, double h) {
+    const auto hermite = [&](double s) {
+        const double s2 = s * s, s3 = s2 * s;
+        return (2 * s3 - 3 * s2 + 1) * x + (s3 - 2 * s2 + s) * h * u + (-2 * s3 + 3 * s2) * x1 +
+               (s3 - s2) * h * u1 - kSwitch;
+    };
+    double lo = 0, hi = 1;
+    for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (hermite(mid) > 0 ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+}  // namespace hertz_tsuji_detail
+
 inline HertzTsujiCollision hertz_tsuji_collision(double alpha, int steps_per_unit = 2000) {
-    constexpr double kSwitch = 0.01;  // x_s
-    constexpr int kEndSteps = 200;    // RK4 steps in y over each end zone
+    using namespace hertz_tsuji_detail;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     HertzTsujiCollision out;
     out.restitution = out.duration = out.max_overlap = out.abs_impulse = nan;
     double u_min = 1;
-    // End zones in y = x^{1/4}: state (u, tau), from y0 to y1.
-    const auto end_zone = [alpha, &u_min](double& u, double& tau, double y0, double y1) {
-        const auto du = [alpha](double y, double uu) {
-            const double y4 = y * y * y * y;
-            return -4.0 * y4 * y4 * y / uu - 4.0 * alpha * y4;
-        };
-        const auto dt = [](double y, double uu) { return 4.0 * y * y * y / uu; };
-        const double h = (y1 - y0) / kEndSteps;
-        for (int k = 0; k < kEndSteps; ++k) {
-            const double y = y0 + k * h;
-            const double k1u = du(y, u), k1t = dt(y, u);
-            const double k2u = du(y + 0.5 * h, u + 0.5 * h * k1u),
-                         k2t = dt(y + 0.5 * h, u + 0.5 * h * k1u);
-            const double k3u = du(y + 0.5 * h, u + 0.5 * h * k2u),
-                         k3t = dt(y + 0.5 * h, u + 0.5 * h * k2u);
-            const double k4u = du(y + h, u + h * k3u), k4t = dt(y + h, u + h * k3u);
-            u += h / 6 * (k1u + 2 * k2u + 2 * k3u + k4u);
-            tau += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
-            u_min = std::min(u_min, u);
-            if (!(std::fabs(u) > 0) || !std::isfinite(u)) return false;
-        }
-        return true;
-    };
-    // Middle zone in tau: state (x, u).
-    const auto accel = [alpha](double x, double u) {
-        const double s = std::sqrt(x);
-        return -x * s - alpha * std::sqrt(s) * u;
-    };
-    const auto rk4 = [&accel](double& x, double& u, double h) {
-        const double k1x = u, k1u = accel(x, u);
-        const double k2x = u + 0.5 * h * k1u, k2u = accel(x + 0.5 * h * k1x, k2x);
-        const double k3x = u + 0.5 * h * k2u, k3u = accel(x + 0.5 * h * k2x, k3x);
-        const double k4x = u + h * k3u, k4u = accel(x + h * k3x, k4x);
-        x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
-        u += h / 6 * (k1u + 2 * k2u + 2 * k3u + k4u);
-    };
     const double y_s = std::sqrt(std::sqrt(kSwitch));
     double u = 1, tau = 0;
-    if (!end_zone(u, tau, 0.0, y_s) || u <= 0) return out;
+    if (!end_zone(alpha, u, tau, u_min, 0.0, y_s) || u <= 0) return out;
     double x = kSwitch, x_max = kSwitch;
     const double h = 1.0 / steps_per_unit;
     for (long step = 0; step < 100L * steps_per_unit; ++step) {
         double x1 = x, u1 = u;
-        rk4(x1, u1, h);
+        middle_step(alpha, x1, u1, h);
         if (x1 < kSwitch && u1 < 0) {
-            // Back at x_s inside this step: root of the cubic Hermite interpolant of x - x_s,
-            // then one RK4 step of that length, then the exit zone in y.
-            const auto hermite = [&](double s) {  // s in [0, 1]
-                const double s2 = s * s, s3 = s2 * s;
-                return (2 * s3 - 3 * s2 + 1) * x + (s3 - 2 * s2 + s) * h * u +
-                       (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * h * u1 - kSwitch;
-            };
-            double lo = 0, hi = 1;
-            for (int it = 0; it < 60; ++it) {
-                const double mid = 0.5 * (lo + hi);
-                (hermite(mid) > 0 ? lo : hi) = mid;
-            }
-            const double s = 0.5 * (lo + hi);
-            rk4(x, u, s * h);
+            // Back at x_s inside this step: one RK4 step to the crossing, then the exit zone in y.
+            const double s = return_fraction(x, u, x1, u1, h);
+            middle_step(alpha, x, u, s * h);
             tau += s * h;
             u_min = std::min(u_min, u);
-            if (!end_zone(u, tau, std::sqrt(std::sqrt(x)), 0.0) || u >= 0) return out;
+            if (!end_zone(alpha, u, tau, u_min, std::sqrt(std::sqrt(x)), 0.0) || u >= 0) return out;
             out.restitution = -u;
             out.duration = tau;
             out.max_overlap = x_max;

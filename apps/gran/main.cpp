@@ -191,109 +191,113 @@ int cmd_tradeoff(gran::TradeoffRequest treq, const std::vector<std::string>& kno
     return cmd_study(file, out, jobs, quiet);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{
-        "gran: event-driven simulations of granular gases (inelastic hard disks and spheres)"};
-    app.require_subcommand(1);
+// What the command line asks for; CLI11 writes into these fields.
+struct CommandLine {
     std::string log_level = "info";
     bool quiet = false;
-    app.add_option("--log-level", log_level, "trace, debug, info, warn, error, off")
-        ->capture_default_str();
-    app.add_flag("-q,--quiet", quiet, "no progress line and only warnings");
-
-    auto* run = app.add_subcommand("run", "run a scene and write OUT.h5 plus OUT.summary.yaml");
+    // run, check
     std::string scene_file, output;
     std::vector<std::string> sets;
-    run->add_option("scene", scene_file, "scene file (YAML)")->required();
-    run->add_option("-o,--output", output, "result file (default results/<scene>.h5)");
-    run->add_option("--set", sets,
-                    "override a scene key, e.g. --set run.measurement=100 (repeatable)");
-
-    auto* check =
-        app.add_subcommand("check", "validate a scene (and its initial placement) without running");
-    check->add_option("scene", scene_file, "scene file (YAML)")->required();
-    check->add_option("--set", sets, "override a scene key (repeatable)");
-
-    auto* study = app.add_subcommand(
-        "study", "run a study (a scene swept over points, grids and replicas) on all cores");
+    // study (jobs: tradeoff too)
     std::string study_file, study_out;
     int jobs = 0;
-    study->add_option("study", study_file, "study file (YAML), see docs/studies.md")->required();
-    study->add_option("-o,--output", study_out, "result folder (default results/<study>)");
-    study->add_option("-j,--jobs", jobs,
-                      "runs at a time (default: the study's `jobs`, else all cores)");
-
-    auto* tradeoff = app.add_subcommand(
-        "tradeoff",
-        "run a scene at a ladder of fidelity settings and report error versus cost "
-        "(docs/studies.md)");
+    // tradeoff
     gran::TradeoffRequest treq;
     std::string tout;
     bool dry_run = false;
     std::vector<std::string> knob_ladders, analytic;
-    tradeoff->add_option("scene", treq.scene, "scene file (YAML)")->required();
-    tradeoff->add_option("--set", treq.sets, "override a base scene key (repeatable)");
+    // list
+    std::string what;
+    bool markdown = false;
+};
+
+CLI::App* add_run(CLI::App& app, CommandLine& cl) {
+    auto* run = app.add_subcommand("run", "run a scene and write OUT.h5 plus OUT.summary.yaml");
+    run->add_option("scene", cl.scene_file, "scene file (YAML)")->required();
+    run->add_option("-o,--output", cl.output, "result file (default results/<scene>.h5)");
+    run->add_option("--set", cl.sets,
+                    "override a scene key, e.g. --set run.measurement=100 (repeatable)");
+    run->fallthrough();
+    return run;
+}
+
+CLI::App* add_check(CLI::App& app, CommandLine& cl) {
+    auto* check =
+        app.add_subcommand("check", "validate a scene (and its initial placement) without running");
+    check->add_option("scene", cl.scene_file, "scene file (YAML)")->required();
+    check->add_option("--set", cl.sets, "override a scene key (repeatable)");
+    check->fallthrough();
+    return check;
+}
+
+CLI::App* add_study(CLI::App& app, CommandLine& cl) {
+    auto* study = app.add_subcommand(
+        "study", "run a study (a scene swept over points, grids and replicas) on all cores");
+    study->add_option("study", cl.study_file, "study file (YAML), see docs/studies.md")->required();
+    study->add_option("-o,--output", cl.study_out, "result folder (default results/<study>)");
+    study->add_option("-j,--jobs", cl.jobs,
+                      "runs at a time (default: the study's `jobs`, else all cores)");
+    study->fallthrough();
+    return study;
+}
+
+CLI::App* add_tradeoff(CLI::App& app, CommandLine& cl) {
+    auto* tradeoff = app.add_subcommand(
+        "tradeoff",
+        "run a scene at a ladder of fidelity settings and report error versus cost "
+        "(docs/studies.md)");
+    tradeoff->add_option("scene", cl.treq.scene, "scene file (YAML)")->required();
+    tradeoff->add_option("--set", cl.treq.sets, "override a base scene key (repeatable)");
     tradeoff
-        ->add_option("--knobs", treq.knobs,
+        ->add_option("--knobs", cl.treq.knobs,
                      "automatic knobs to use: dt_over_tc, stiffness, engine, kick_interval, "
                      "N, measurement (default: all that apply)")
         ->delimiter(',');
-    tradeoff->add_option("--knob", knob_ladders,
+    tradeoff->add_option("--knob", cl.knob_ladders,
                          "a ladder of any scene key, cheapest first: KEY=v1,v2,... (repeatable)");
-    tradeoff->add_option("--quantity", treq.quantities,
+    tradeoff->add_option("--quantity", cl.treq.quantities,
                          "summary quantity to compare (repeatable; default: the headline ones)");
-    tradeoff->add_option("--analytic", analytic,
+    tradeoff->add_option("--analytic", cl.analytic,
                          "exact value of a quantity, the reference for it: QUANTITY=value");
-    tradeoff->add_option("-o,--output", tout, "result folder (default results/tradeoff-<scene>)");
-    tradeoff->add_option("-j,--jobs", jobs, "runs at a time (default: all cores)");
-    tradeoff->add_flag("--dry-run", dry_run, "write and print the study file, run nothing");
+    tradeoff->add_option("-o,--output", cl.tout,
+                         "result folder (default results/tradeoff-<scene>)");
+    tradeoff->add_option("-j,--jobs", cl.jobs, "runs at a time (default: all cores)");
+    tradeoff->add_flag("--dry-run", cl.dry_run, "write and print the study file, run nothing");
     tradeoff->fallthrough();
+    return tradeoff;
+}
 
-    run->fallthrough();
-    check->fallthrough();
-    study->fallthrough();
+CLI::App* add_list(CLI::App& app, CommandLine& cl) {
     auto* list =
         app.add_subcommand("list", "document scene sections and plugins with their parameters");
-    std::string what;
-    bool markdown = false;
-    list->add_option("what", what,
+    list->add_option("what", cl.what,
                      "scene, laws, engines, drivers, observables or placements (default: all)");
     list->add_flag(
-        "--markdown", markdown,
+        "--markdown", cl.markdown,
         "print Markdown: with no category, the page docs/scene-reference.md (make docs)");
+    return list;
+}
 
-    CLI11_PARSE(app, argc, argv);
-    spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::from_str(log_level));
-    spdlog::set_pattern("[%H:%M:%S] [%^%l%$] %v");
-
-    if (list->parsed()) return cmd_list(what, markdown);
-
-    if (study->parsed()) return cmd_study(study_file, study_out, jobs, quiet);
-
-    if (tradeoff->parsed())
-        return cmd_tradeoff(treq, knob_ladders, analytic, tout, jobs, quiet, dry_run);
-
+// `gran run` and `gran check` (check_only).
+int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
     try {
-        gran::Scene scene = gran::load_scene(scene_file, sets);
-        if (check->parsed()) {
+        gran::Scene scene = gran::load_scene(cl.scene_file, cl.sets);
+        if (check_only) {
             gran::check_scene(scene);
             std::cout << fmt::format("{}: ok ({}D, {} particles, packing fraction {:.4g})\n",
-                                     scene_file, scene.dimension, scene.species.total_count(),
+                                     cl.scene_file, scene.dimension, scene.species.total_count(),
                                      scene.packing_fraction);
             return 0;
         }
-        if (output.empty()) output = default_output(scene_file);
         std::signal(SIGINT, on_signal);
         std::signal(SIGTERM, on_signal);
         gran::RunOptions opt;
-        opt.output = output;
-        opt.progress = !quiet;
+        opt.output = cl.output.empty() ? default_output(cl.scene_file) : cl.output;
+        opt.progress = !cl.quiet;
         opt.terminal = isatty(STDERR_FILENO) != 0;
         opt.command_line.assign(argv, argv + argc);
         opt.interrupt = &g_interrupt;
-        spdlog::info("running {} ({}D, {} particles, packing fraction {:.4g})", scene_file,
+        spdlog::info("running {} ({}D, {} particles, packing fraction {:.4g})", cl.scene_file,
                      scene.dimension, scene.species.total_count(), scene.packing_fraction);
         const gran::RunReport rep = gran::run_scene(scene, opt);
         print_headline(rep.summary);
@@ -315,4 +319,32 @@ int main(int argc, char** argv) {
         std::cerr << "gran: error: " << e.what() << "\n";
         return 1;
     }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "gran: event-driven simulations of granular gases (inelastic hard disks and spheres)"};
+    app.require_subcommand(1);
+    CommandLine cl;
+    app.add_option("--log-level", cl.log_level, "trace, debug, info, warn, error, off")
+        ->capture_default_str();
+    app.add_flag("-q,--quiet", cl.quiet, "no progress line and only warnings");
+    add_run(app, cl);
+    const CLI::App* check = add_check(app, cl);
+    const CLI::App* study = add_study(app, cl);
+    const CLI::App* tradeoff = add_tradeoff(app, cl);
+    const CLI::App* list = add_list(app, cl);
+
+    CLI11_PARSE(app, argc, argv);
+    spdlog::set_level(cl.quiet ? spdlog::level::warn : spdlog::level::from_str(cl.log_level));
+    spdlog::set_pattern("[%H:%M:%S] [%^%l%$] %v");
+
+    if (list->parsed()) return cmd_list(cl.what, cl.markdown);
+    if (study->parsed()) return cmd_study(cl.study_file, cl.study_out, cl.jobs, cl.quiet);
+    if (tradeoff->parsed())
+        return cmd_tradeoff(cl.treq, cl.knob_ladders, cl.analytic, cl.tout, cl.jobs, cl.quiet,
+                            cl.dry_run);
+    return cmd_run(cl, check->parsed(), argc, argv);
 }

@@ -21,9 +21,9 @@
 #include <string>
 
 #include "bench/vibrated_bed.hpp"
-#include "species/contact_laws.hpp"
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/scene/placement.hpp"
+#include "species/contact_laws.hpp"
 
 using namespace gran;
 
@@ -48,30 +48,32 @@ Observables measure(const DemEngine<3>& e) {
     return o;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Args {
     std::size_t n = 1600;
     double warmup_periods = 2, psteps = 2e7, W = 9;
     std::uint64_t steps = 0, sample = 10;
+};
+
+// False, after a message, on an unknown option or a missing value.
+bool parse_args(int argc, char** argv, Args& args) {
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string a = argv[i];
         const char* v = argv[i + 1];
         if (a == "--N") {
-            n = std::stoul(v);
+            args.n = std::stoul(v);
         } else if (a == "--warmup-periods") {
-            warmup_periods = std::stod(v);
+            args.warmup_periods = std::stod(v);
         } else if (a == "--psteps") {
-            psteps = std::stod(v);
+            args.psteps = std::stod(v);
         } else if (a == "--steps") {
-            steps = std::stoull(v);
+            args.steps = std::stoull(v);
         } else if (a == "--W") {
-            W = std::stod(v);
+            args.W = std::stod(v);
         } else if (a == "--sample") {
-            sample = std::max<std::uint64_t>(1, std::stoull(v));
+            args.sample = std::max<std::uint64_t>(1, std::stoull(v));
         } else {
             std::fprintf(stderr, "unknown option %s\n", a.c_str());
-            return 2;
+            return false;
         }
     }
     if (argc % 2 == 0) {
@@ -79,44 +81,21 @@ int main(int argc, char** argv) {
                      "usage: %s [--N n] [--warmup-periods P] [--psteps X] [--steps S] [--W W] "
                      "[--sample K]\n",
                      argv[0]);
-        return 2;
+        return false;
     }
+    return true;
+}
 
-    // The system of bench/bench_dem.cpp (bench/vibrated_bed.hpp).
-    const double period = gran::bench::kBedPeriod;
-    const double width = gran::bench::bed_width(n);
-    const SpeciesTable table = gran::bench::bed_species(n);
-    const ContactTable contacts = gran::bench::bed_contacts(table);
-    DemEngine<3> e = gran::bench::vibrated_bed(table, contacts, n, W);
-    e.advance(warmup_periods * period);
-    const std::uint64_t warm_steps = e.counters().steps;
-    const std::uint64_t warm_rebuilds = e.counters().rebuilds;
-
-    // The dashpots of Eq. A9 for the grain pair (m_eff = 1/2) and the floor (m_eff = 1).
-    const double t_c = contacts.law->soft_contact->duration(*contacts.table, 0);
-    const double c_n = gran::linear_damping_from_restitution(2e5, 0.5, 0.9);
-    const double c_n_wall = gran::linear_damping_from_restitution(2e5, 1.0, 0.9);
-    std::printf(
-        "gran: N %zu width %.6g dt %.15g t_c %.15g c_n %.15g (wall %.15g) c_t %.6g (wall %.6g)\n",
-        n, width, e.dt(), t_c, c_n, c_n_wall, 20.0, 20.0);
-    Observables o = measure(e);
-    std::printf(
-        "gran: after a warm-up of %llu steps: contacts/N %.4f T_z %.4f <z> %.4f (rebuilds/step "
-        "%.4f)\n",
-        static_cast<unsigned long long>(warm_steps), o.contacts, o.tz, o.zmean,
-        double(warm_rebuilds) / double(warm_steps));
-
-    if (steps == 0) {
-        steps = static_cast<std::uint64_t>(std::max(1000.0, std::ceil(psteps / double(n))));
-    }
-    steps = sample * ((steps + sample - 1) / sample);  // as vibrated_bed.in's sample mode
+// The run that follows the warm-up (the benchmark's timed part): averages every `sample` steps,
+// then the state at its end.
+void timed_run(DemEngine<3>& e, std::size_t n, std::uint64_t steps, std::uint64_t sample) {
     Observables sum;
     std::uint64_t samples = 0;
     const std::uint64_t rebuilds0 = e.counters().rebuilds;
     for (std::uint64_t k = 1; k <= steps; ++k) {
         e.step();
         if (k % sample == 0) {
-            o = measure(e);
+            const Observables o = measure(e);
             sum.contacts += o.contacts;
             sum.tz += o.tz;
             sum.zmean += o.zmean;
@@ -130,9 +109,49 @@ int main(int argc, char** argv) {
         "%.4f)\n",
         static_cast<unsigned long long>(sample), sum.contacts / m, sum.tz / m, sum.zmean / m,
         double(e.counters().rebuilds - rebuilds0) / double(steps));
-    o = measure(e);
+    const Observables o = measure(e);
     std::printf(
         "gran: timed %llu steps with %zu grains; at the end: contacts/N %.4f T_z %.4f <z> %.4f\n",
         static_cast<unsigned long long>(steps), n, o.contacts, o.tz, o.zmean);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Args args;
+    if (!parse_args(argc, argv, args)) return 2;
+    const std::size_t n = args.n;
+
+    // The system of bench/bench_dem.cpp (bench/vibrated_bed.hpp).
+    const double period = gran::bench::kBedPeriod;
+    const double width = gran::bench::bed_width(n);
+    const SpeciesTable table = gran::bench::bed_species(n);
+    const ContactTable contacts = gran::bench::bed_contacts(table);
+    DemEngine<3> e = gran::bench::vibrated_bed(table, contacts, n, args.W);
+    e.advance(args.warmup_periods * period);
+    const std::uint64_t warm_steps = e.counters().steps;
+    const std::uint64_t warm_rebuilds = e.counters().rebuilds;
+
+    // The dashpots of Eq. A9 for the grain pair (m_eff = 1/2) and the floor (m_eff = 1).
+    const double t_c = contacts.law->soft_contact->duration(*contacts.table, 0);
+    const double c_n = gran::linear_damping_from_restitution(2e5, 0.5, 0.9);
+    const double c_n_wall = gran::linear_damping_from_restitution(2e5, 1.0, 0.9);
+    std::printf(
+        "gran: N %zu width %.6g dt %.15g t_c %.15g c_n %.15g (wall %.15g) c_t %.6g (wall %.6g)\n",
+        n, width, e.dt(), t_c, c_n, c_n_wall, 20.0, 20.0);
+    const Observables o = measure(e);
+    std::printf(
+        "gran: after a warm-up of %llu steps: contacts/N %.4f T_z %.4f <z> %.4f (rebuilds/step "
+        "%.4f)\n",
+        static_cast<unsigned long long>(warm_steps), o.contacts, o.tz, o.zmean,
+        double(warm_rebuilds) / double(warm_steps));
+
+    std::uint64_t steps = args.steps;
+    if (steps == 0) {
+        steps = static_cast<std::uint64_t>(std::max(1000.0, std::ceil(args.psteps / double(n))));
+    }
+    // As vibrated_bed.in's sample mode.
+    steps = args.sample * ((steps + args.sample - 1) / args.sample);
+    timed_run(e, n, steps, args.sample);
     return 0;
 }

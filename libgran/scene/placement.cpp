@@ -1,7 +1,5 @@
 #include "libgran/scene/placement.hpp"
 
-#include "libgran/plugins/placement.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,6 +7,8 @@
 #include <numbers>
 #include <numeric>
 #include <unordered_map>
+
+#include "libgran/plugins/placement.hpp"
 
 namespace gran {
 
@@ -41,6 +41,80 @@ Particles<D> empty_particles(const SpeciesTable& table) {
     return p;
 }
 
+// Hash grid of the particles placed so far, cells at least dmax wide (random placement).
+template <int D>
+class PlacedGrid {
+  public:
+    PlacedGrid(const Box<D>& box, double dmax) : box_(box) {
+        for (int a = 0; a < D; ++a) {
+            nc_[a] = std::max<std::int64_t>(1, std::int64_t(box.length[a] / dmax));
+            w_[a] = box.length[a] / double(nc_[a]);
+        }
+    }
+
+    // Whether a particle of radius rad at r overlaps none of the placed particles of p: scans
+    // the 3^D neighbourhood of its cell (wrapping periodic axes).
+    bool free(const Vec<D>& r, double rad, const Particles<D>& p, const SpeciesTable& table) const {
+        const std::array<std::int64_t, D> c = cell(r);
+        for (int code = 0; code < (D == 2 ? 9 : 27); ++code) {
+            std::array<std::int64_t, D> cn;
+            int rest = code;
+            bool inside = true;
+            for (int a = 0; a < D; ++a) {
+                cn[a] = c[a] + (rest % 3) - 1;
+                rest /= 3;
+                if (cn[a] < 0 || cn[a] >= nc_[a]) {
+                    if (box_.periodic[a]) {
+                        cn[a] = (cn[a] + nc_[a]) % nc_[a];
+                    } else {
+                        inside = false;
+                    }
+                }
+            }
+            if (!inside) continue;
+            auto it = grid_.find(key(cn));
+            if (it == grid_.end()) continue;
+            for (std::uint32_t j : it->second) {
+                const double sig = rad + 0.5 * table.species[p.species[j]].diameter;
+                if (box_.separation(r, p.r[j]).squaredNorm() < sig * sig) return false;
+            }
+        }
+        return true;
+    }
+
+    void add(const Vec<D>& r, std::uint32_t idx) { grid_[key(cell(r))].push_back(idx); }
+
+  private:
+    std::array<std::int64_t, D> cell(const Vec<D>& r) const {
+        std::array<std::int64_t, D> c;
+        for (int a = 0; a < D; ++a)
+            c[a] = std::min<std::int64_t>(nc_[a] - 1, std::int64_t(r[a] / w_[a]));
+        return c;
+    }
+    std::int64_t key(const std::array<std::int64_t, D>& c) const {
+        std::int64_t k = 0;
+        for (int a = D - 1; a >= 0; --a) k = k * nc_[a] + c[a];
+        return k;
+    }
+
+    const Box<D>& box_;
+    std::array<std::int64_t, D> nc_;
+    Vec<D> w_;
+    std::unordered_map<std::int64_t, std::vector<std::uint32_t>> grid_;
+};
+
+// A uniformly random position for a particle of radius rad, inside the walls of bounded axes.
+template <int D>
+Vec<D> random_position(const Box<D>& box, double rad, Rng& rng) {
+    Vec<D> r;
+    for (int a = 0; a < D; ++a) {
+        const double lo = box.periodic[a] ? 0.0 : rad;
+        const double hi = box.periodic[a] ? box.length[a] : box.length[a] - rad;
+        r[a] = lo + (hi - lo) * uniform01(rng);
+    }
+    return r;
+}
+
 }  // namespace
 
 template <int D>
@@ -52,67 +126,18 @@ Particles<D> place_random(const Box<D>& box, const SpeciesTable& table, Rng& rng
     std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
         return table.species[a].diameter > table.species[b].diameter;
     });
-    const double dmax = table.max_diameter();
-    std::array<std::int64_t, D> nc;
-    Vec<D> w;
-    for (int a = 0; a < D; ++a) {
-        nc[a] = std::max<std::int64_t>(1, std::int64_t(box.length[a] / dmax));
-        w[a] = box.length[a] / double(nc[a]);
-    }
-    // Hash grid of placed particles, cells at least dmax wide.
-    std::unordered_map<std::int64_t, std::vector<std::uint32_t>> grid;
-    auto key = [&](const std::array<std::int64_t, D>& c) {
-        std::int64_t k = 0;
-        for (int a = D - 1; a >= 0; --a) k = k * nc[a] + c[a];
-        return k;
-    };
+    PlacedGrid<D> grid(box, table.max_diameter());
     const double phi = packing_fraction<D>(box, table);
     for (std::size_t idx = 0; idx < order.size(); ++idx) {
         const std::uint32_t s = order[idx];
         const double rad = 0.5 * table.species[s].diameter;
         bool placed = false;
         for (std::size_t attempt = 0; attempt < attempts && !placed; ++attempt) {
-            Vec<D> r;
-            for (int a = 0; a < D; ++a) {
-                const double lo = box.periodic[a] ? 0.0 : rad;
-                const double hi = box.periodic[a] ? box.length[a] : box.length[a] - rad;
-                r[a] = lo + (hi - lo) * uniform01(rng);
-            }
-            std::array<std::int64_t, D> c;
-            for (int a = 0; a < D; ++a)
-                c[a] = std::min<std::int64_t>(nc[a] - 1, std::int64_t(r[a] / w[a]));
-            bool ok = true;
-            // Scan the 3^D neighbourhood (wrapping periodic axes).
-            for (int code = 0; code < (D == 2 ? 9 : 27) && ok; ++code) {
-                std::array<std::int64_t, D> cn;
-                int rest = code;
-                bool inside = true;
-                for (int a = 0; a < D; ++a) {
-                    cn[a] = c[a] + (rest % 3) - 1;
-                    rest /= 3;
-                    if (cn[a] < 0 || cn[a] >= nc[a]) {
-                        if (box.periodic[a]) {
-                            cn[a] = (cn[a] + nc[a]) % nc[a];
-                        } else {
-                            inside = false;
-                        }
-                    }
-                }
-                if (!inside) continue;
-                auto it = grid.find(key(cn));
-                if (it == grid.end()) continue;
-                for (std::uint32_t j : it->second) {
-                    const double sig = rad + 0.5 * table.species[p.species[j]].diameter;
-                    if (box.separation(r, p.r[j]).squaredNorm() < sig * sig) {
-                        ok = false;
-                        break;
-                    }
-                }
-            }
-            if (ok) {
+            const Vec<D> r = random_position<D>(box, rad, rng);
+            if (grid.free(r, rad, p, table)) {
                 p.r[idx] = r;
                 p.species[idx] = s;
-                grid[key(c)].push_back(static_cast<std::uint32_t>(idx));
+                grid.add(r, static_cast<std::uint32_t>(idx));
                 placed = true;
             }
         }
