@@ -14,11 +14,14 @@
 // The mass-weighted mean kick is removed (key `remove_drift`) so that total momentum stays
 // zero: otherwise the centre of mass performs an undamped random walk whose kinetic energy grows
 // linearly in time. The correction changes each kick by O(1/N).
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "libgran/core/kinetic_theory.hpp"
 #include "libgran/core/random.hpp"
 #include "libgran/plugins/driver.hpp"
+#include "libgran/study/knob.hpp"
 
 namespace gran {
 namespace {
@@ -142,6 +145,23 @@ const bool registered = register_plugin<Driver, StochasticThermostat>(
      boolean("remove_drift", "true",
              "subtract the mass-weighted mean kick so total momentum stays zero")},
     kDescription);
+
+// `gran tradeoff`'s knob of the thermostat (libgran/study/knob.hpp): the time between kicks, the
+// discretisation of the white noise, on the first stochastic_thermostat of the scene.
+KnobOutcome kick_interval(const KnobContext& c) {
+    const YAML::Node drivers = c.resolved["drivers"];
+    for (std::size_t i = 0; drivers && i < drivers.size(); ++i) {
+        if (drivers[i]["type"] && drivers[i]["type"].Scalar() == "stochastic_thermostat") {
+            return knobs::scaled("kick_interval", "time between thermostat kicks",
+                                 fmt::format("drivers.{}.interval", i),
+                                 knobs::real_at(drivers[i], "interval"), {4, 2, 1, 0.5});
+        }
+    }
+    return "no stochastic_thermostat driver";
+}
+
+const bool registered_knob = register_knob(
+    "kick_interval", 40, "stochastic_thermostat interval x 4, 2, 1, 1/2", kick_interval);
 
 }  // namespace
 }  // namespace gran

@@ -33,15 +33,10 @@ struct TradeoffRequest {
     std::vector<std::pair<std::string, double>> analytic;  // quantity -> exact value
 };
 
-// The automatic knobs of a scene, given its resolved YAML and the scene file as written:
-//   dt_over_tc    DEM engine.dt_fraction x 4, 2, 1, 1/2 (never above 0.2)
-//   stiffness     DEM engine.stiffness x 1/100, 1/10, 1, 10 (contact_time x 10, ..., when set)
-//   engine        a frictionless DEM scene also runs on the event-driven engine (the hard limit)
-//   kick_interval stochastic_thermostat interval x 4, 2, 1, 1/2
-//   N             particles x 1/8, 1/4, 1/2, 1 at the same density (periodic lengths scaled)
-//   measurement   run.measurement x 1/8, 1/4, 1/2, 1
-// Every name in `wanted` must be one of these (SceneError otherwise); knobs that do not apply to
-// the scene are skipped with a note in `skipped`.
+// The automatic knobs of a scene: every registered knob (KnobRegistry, libgran/study/knob.hpp;
+// each declared by the plugin that owns its setting) in ladder order, or only those named in
+// `request.knobs` (each must be registered: SceneError otherwise). Knobs that do not apply to the
+// scene, and levels the scene refuses, are skipped with a note in `skipped`.
 std::vector<Knob> automatic_knobs(const TradeoffRequest& request,
                                   std::vector<std::string>& skipped);
 

@@ -12,6 +12,7 @@
 
 #include "libgran/core/h5.hpp"
 #include "libgran/core/scene_error.hpp"
+#include "libgran/study/knob.hpp"
 #include "libgran/study/study.hpp"
 #include "libgran/study/study_tradeoff.hpp"
 #include "libgran/study/tradeoff_ladder.hpp"
@@ -166,6 +167,44 @@ TEST_F(TradeoffLadder, FrictionKeepsTheDemEngineAndUnknownKnobsAreRefused) {
     EXPECT_TRUE(said);
     rq.knobs = {"timestep"};
     EXPECT_THROW((void)gran::automatic_knobs(rq, skipped), gran::SceneError);
+}
+
+TEST(KnobRegistry, HoldsTheSixKnobsInLadderOrderEachDeclaredByItsPlugin) {
+    std::vector<std::string> names;
+    for (const gran::KnobPlugin* k : gran::knobs_in_order()) {
+        names.push_back(k->name);
+        EXPECT_FALSE(k->summary.empty()) << k->name;
+        EXPECT_TRUE(k->make) << k->name;
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"dt_over_tc", "stiffness", "engine", "kick_interval",
+                                               "N", "measurement"}));
+    EXPECT_EQ(gran::knob_names(), "dt_over_tc, stiffness, engine, kick_interval, N, measurement");
+}
+
+TEST_F(TradeoffLadder, TheUnknownKnobMessageListsTheRegisteredKnobs) {
+    gran::TradeoffRequest rq;
+    rq.scene = scene(kDemBed);
+    rq.knobs = {"N", "timestep"};
+    std::vector<std::string> skipped;
+    try {
+        (void)gran::automatic_knobs(rq, skipped);
+        FAIL() << "accepted an unknown knob";
+    } catch (const gran::SceneError& e) {
+        EXPECT_EQ(std::string(e.what()), "gran tradeoff: unknown knob 'timestep'; the knobs are " +
+                                             gran::knob_names() +
+                                             " (or --knob KEY=v1,v2,... for any scene key)");
+        for (const gran::KnobPlugin* k : gran::knobs_in_order())
+            EXPECT_NE(std::string(e.what()).find(k->name), std::string::npos) << k->name;
+    }
+}
+
+TEST_F(TradeoffLadder, KnobsThatDoNotApplySayWhyUnderTheirName) {
+    gran::TradeoffRequest rq;
+    rq.scene = scene(kDemBed);
+    std::vector<std::string> skipped;
+    (void)gran::automatic_knobs(rq, skipped);
+    ASSERT_FALSE(skipped.empty());
+    EXPECT_EQ(skipped[0], "kick_interval: no stochastic_thermostat driver");
 }
 
 TEST_F(TradeoffLadder, ThermostatSceneLaddersTheKickIntervalAndRefinesItForTheReference) {
