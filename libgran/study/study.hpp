@@ -22,6 +22,11 @@ struct StudyRun {
     std::string resolved_scene;  // the resolved scene text the run will record (for resume)
 };
 
+// The run's overrides as `--set` assignments "key=value".
+std::vector<std::string> assignments(const StudyRun& run);
+// The value the run gives a scene key, "" when it does not override it.
+std::string override_value(const StudyRun& run, const std::string& key);
+
 // A least-squares power-law fit over the runs: log y = theta log x + c (McNamara & Falcon 2005,
 // Sec. IV: an exponent is reported only when every point lies within `tolerance` of the fit in
 // natural log).

@@ -159,45 +159,92 @@ void add_pdf_distances(const Study& st, const std::vector<std::string>& outputs,
         quantities.push_back(kPdfDistance);
 }
 
-TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>& quantities,
-                                const std::vector<Row>& rows, const std::vector<bool>& have) {
-    TradeoffResult t;
-    const StudyTradeoff& spec = st.tradeoff;
-    std::vector<std::size_t> refs, runs;
+namespace {
+
+// The runs to compare (complete ones) and those of the reference point among them.
+struct RunSets {
+    std::vector<std::size_t> runs, refs;
+};
+
+RunSets run_sets(const Study& st, const std::vector<bool>& have) {
+    RunSets s;
     for (std::size_t i = 0; i < st.runs.size(); ++i) {
         if (!have[i]) continue;
-        runs.push_back(i);
-        if (st.runs[i].point == spec.reference) refs.push_back(i);
+        s.runs.push_back(i);
+        if (st.runs[i].point == st.tradeoff.reference) s.refs.push_back(i);
     }
-    auto analytic_of = [&](const std::string& q) -> const double* {
-        for (const auto& [k, v] : spec.analytic) {
-            if (k == q) return &v;
-        }
-        return nullptr;
-    };
-    std::vector<std::string> wanted = spec.quantities;
-    if (wanted.empty()) {
-        std::set<std::string> avail;
-        for (std::size_t i : refs.empty() ? runs : refs) {
-            for (const auto& [k, v] : rows[i])
-                if (!std::isnan(v.second)) avail.insert(k);
-        }
-        wanted = default_tradeoff_quantities({avail.begin(), avail.end()});
-        for (const auto& [k, v] : spec.analytic) {
-            if (std::find(wanted.begin(), wanted.end(), k) == wanted.end()) wanted.push_back(k);
-        }
-    }
-    if (std::find(quantities.begin(), quantities.end(), spec.cost) == quantities.end())
-        t.problems.push_back(fmt::format("cost quantity '{}' is in no run summary", spec.cost));
+    return s;
+}
 
-    // Reference values.
-    std::vector<double> ref_value, ref_error;
+const double* analytic_of(const StudyTradeoff& spec, const std::string& q) {
+    for (const auto& [k, v] : spec.analytic) {
+        if (k == q) return &v;
+    }
+    return nullptr;
+}
+
+// The study's quantities, else the headline estimates of the reference runs (of every run
+// without them) and the quantities given analytic values.
+std::vector<std::string> wanted_quantities(const StudyTradeoff& spec, const RunSets& s,
+                                           const std::vector<Row>& rows) {
+    if (!spec.quantities.empty()) return spec.quantities;
+    std::set<std::string> avail;
+    for (std::size_t i : s.refs.empty() ? s.runs : s.refs) {
+        for (const auto& [k, v] : rows[i])
+            if (!std::isnan(v.second)) avail.insert(k);
+    }
+    std::vector<std::string> wanted = default_tradeoff_quantities({avail.begin(), avail.end()});
+    for (const auto& [k, v] : spec.analytic) {
+        if (std::find(wanted.begin(), wanted.end(), k) == wanted.end()) wanted.push_back(k);
+    }
+    return wanted;
+}
+
+// The reference value of every quantity compared, with its error.
+struct References {
+    std::vector<double> value, error;
+};
+
+// Quantity q's reference from the runs of the reference point: their mean, with the error of
+// the mean; false (and a problem noted) when there is none or it is 0.
+bool mean_of_reference_runs(const std::string& q, const std::vector<std::size_t>& refs,
+                            const std::vector<Row>& rows, TradeoffResult& t, References& r) {
+    double sum = 0, var = 0;
+    std::size_t k = 0;
+    for (std::size_t i : refs) {
+        auto it = rows[i].find(q);
+        if (it == rows[i].end() || !std::isfinite(it->second.first)) continue;
+        sum += it->second.first;
+        var += std::isfinite(it->second.second) ? it->second.second * it->second.second : 0;
+        ++k;
+    }
+    if (k == 0) {
+        t.problems.push_back(fmt::format("{}: the reference runs do not report it", q));
+        return false;
+    }
+    const double mean = sum / double(k);
+    if (mean == 0) {
+        t.problems.push_back(
+            fmt::format("{}: the reference value is 0, so there is no relative deviation", q));
+        return false;
+    }
+    r.value.push_back(mean);
+    r.error.push_back(std::sqrt(var) / double(k));
+    return true;
+}
+
+// Sets t.quantities and t.reference_kind to the quantities that have a reference (the others
+// are noted in t.problems), and returns their references.
+References find_references(const StudyTradeoff& spec, const std::vector<std::string>& wanted,
+                           const std::vector<std::size_t>& refs, const std::vector<Row>& rows,
+                           TradeoffResult& t) {
+    References r;
     for (const auto& q : wanted) {
-        if (const double* a = analytic_of(q)) {
+        if (const double* a = analytic_of(spec, q)) {
             t.quantities.push_back(q);
             t.reference_kind.push_back("analytic");
-            ref_value.push_back(*a);
-            ref_error.push_back(0);
+            r.value.push_back(*a);
+            r.error.push_back(0);
             continue;
         }
         if (refs.empty()) {
@@ -210,92 +257,98 @@ TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>&
             // A distance from the reference: 0 by definition, deviations are absolute.
             t.quantities.push_back(q);
             t.reference_kind.push_back(spec.reference + " (distance)");
-            ref_value.push_back(0);
-            ref_error.push_back(0);
+            r.value.push_back(0);
+            r.error.push_back(0);
             continue;
         }
-        double sum = 0, var = 0;
-        std::size_t k = 0;
-        for (std::size_t i : refs) {
-            auto it = rows[i].find(q);
-            if (it == rows[i].end() || !std::isfinite(it->second.first)) continue;
-            sum += it->second.first;
-            var += std::isfinite(it->second.second) ? it->second.second * it->second.second : 0;
-            ++k;
-        }
-        if (k == 0) {
-            t.problems.push_back(fmt::format("{}: the reference runs do not report it", q));
-            continue;
-        }
-        const double mean = sum / double(k);
-        if (mean == 0) {
-            t.problems.push_back(
-                fmt::format("{}: the reference value is 0, so there is no relative deviation", q));
-            continue;
-        }
+        if (!mean_of_reference_runs(q, refs, rows, t, r)) continue;
         t.quantities.push_back(q);
         t.reference_kind.push_back(spec.reference);
-        ref_value.push_back(mean);
-        ref_error.push_back(std::sqrt(var) / double(k));
     }
+    return r;
+}
 
-    const std::size_t nq = t.quantities.size();
-    for (std::size_t i : runs) {
-        TradeoffRow r;
-        r.run = st.runs[i].name;
-        r.point = st.runs[i].point;
-        r.knob = metadata_text(st.runs[i], "knob");
-        r.level = metadata_text(st.runs[i], "level");
-        r.reference = st.runs[i].point == spec.reference;
-        auto c = rows[i].find(spec.cost);
-        r.cost = c == rows[i].end() ? std::nan("") : c->second.first;
-        auto w = rows[i].find("performance.wall_time");
-        r.wall = w == rows[i].end() ? std::nan("") : w->second.first;
-        r.worst = 0;
-        for (std::size_t q = 0; q < nq; ++q) {
-            TradeoffCell cell;
-            cell.reference = ref_value[q];
-            cell.reference_error = ref_error[q];
-            auto it = rows[i].find(t.quantities[q]);
-            if (it == rows[i].end()) {
-                cell.value = cell.error = cell.deviation = cell.deviation_error = cell.accuracy =
-                    std::nan("");
-            } else {
-                cell.value = it->second.first;
-                cell.error = it->second.second;
-                const bool distance = is_distance(t.quantities[q]);
-                const double scale = distance ? 1.0 : std::abs(cell.reference);
-                cell.deviation = (cell.value - cell.reference) / scale;
-                // A reference run against the mean of the reference runs: its own error only (the
-                // two are not independent). Any other run: both errors, independent runs.
-                const bool analytic = t.reference_kind[q] == "analytic" || distance;
-                const double e2 =
-                    cell.error * cell.error +
-                    (r.reference || analytic ? 0.0 : cell.reference_error * cell.reference_error);
-                cell.deviation_error = std::sqrt(e2) / scale;
-                cell.accuracy = std::abs(cell.deviation) + cell.deviation_error;
-            }
-            r.worst = std::isnan(cell.accuracy) ? std::nan("") : std::max(r.worst, cell.accuracy);
-            r.cells.push_back(cell);
-        }
-        if (nq == 0) r.worst = std::nan("");
-        t.rows.push_back(std::move(r));
+// Quantity q of a run (row) against its reference.
+TradeoffCell compare(const TradeoffResult& t, std::size_t q, const References& refs, const Row& row,
+                     bool reference_run) {
+    TradeoffCell cell;
+    cell.reference = refs.value[q];
+    cell.reference_error = refs.error[q];
+    auto it = row.find(t.quantities[q]);
+    if (it == row.end()) {
+        cell.value = cell.error = cell.deviation = cell.deviation_error = cell.accuracy =
+            std::nan("");
+        return cell;
     }
-    // Pareto fronts: per quantity and for the worst quantity.
+    cell.value = it->second.first;
+    cell.error = it->second.second;
+    const bool distance = is_distance(t.quantities[q]);
+    const double scale = distance ? 1.0 : std::abs(cell.reference);
+    cell.deviation = (cell.value - cell.reference) / scale;
+    // A reference run against the mean of the reference runs: its own error only (the two are
+    // not independent). Any other run: both errors, independent runs.
+    const bool analytic = t.reference_kind[q] == "analytic" || distance;
+    const double e2 =
+        cell.error * cell.error +
+        (reference_run || analytic ? 0.0 : cell.reference_error * cell.reference_error);
+    cell.deviation_error = std::sqrt(e2) / scale;
+    cell.accuracy = std::abs(cell.deviation) + cell.deviation_error;
+    return cell;
+}
+
+// Run i: its cost and every quantity against its reference.
+TradeoffRow compare_run(const Study& st, std::size_t i, const Row& row, const TradeoffResult& t,
+                        const References& refs) {
+    const StudyTradeoff& spec = st.tradeoff;
+    TradeoffRow r;
+    r.run = st.runs[i].name;
+    r.point = st.runs[i].point;
+    r.knob = metadata_text(st.runs[i], "knob");
+    r.level = metadata_text(st.runs[i], "level");
+    r.reference = st.runs[i].point == spec.reference;
+    auto c = row.find(spec.cost);
+    r.cost = c == row.end() ? std::nan("") : c->second.first;
+    auto w = row.find("performance.wall_time");
+    r.wall = w == row.end() ? std::nan("") : w->second.first;
+    r.worst = 0;
+    for (std::size_t q = 0; q < t.quantities.size(); ++q) {
+        const TradeoffCell cell = compare(t, q, refs, row, r.reference);
+        r.worst = std::isnan(cell.accuracy) ? std::nan("") : std::max(r.worst, cell.accuracy);
+        r.cells.push_back(cell);
+    }
+    if (t.quantities.empty()) r.worst = std::nan("");
+    return r;
+}
+
+// Pareto fronts: per quantity and for the worst quantity.
+void mark_pareto_fronts(TradeoffResult& t) {
     std::vector<double> cost;
     for (const auto& r : t.rows) cost.push_back(r.cost);
-    for (std::size_t q = 0; q < nq; ++q) {
+    for (std::size_t q = 0; q < t.quantities.size(); ++q) {
         std::vector<double> acc;
         for (const auto& r : t.rows) acc.push_back(r.cells[q].accuracy);
         const auto f = pareto_front(cost, acc);
         for (std::size_t k = 0; k < t.rows.size(); ++k) t.rows[k].cells[q].pareto = f[k];
     }
-    {
-        std::vector<double> worst;
-        for (const auto& r : t.rows) worst.push_back(r.worst);
-        const auto f = pareto_front(cost, worst);
-        for (std::size_t k = 0; k < t.rows.size(); ++k) t.rows[k].pareto = f[k];
-    }
+    std::vector<double> worst;
+    for (const auto& r : t.rows) worst.push_back(r.worst);
+    const auto f = pareto_front(cost, worst);
+    for (std::size_t k = 0; k < t.rows.size(); ++k) t.rows[k].pareto = f[k];
+}
+
+}  // namespace
+
+TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>& quantities,
+                                const std::vector<Row>& rows, const std::vector<bool>& have) {
+    TradeoffResult t;
+    const StudyTradeoff& spec = st.tradeoff;
+    const RunSets s = run_sets(st, have);
+    const std::vector<std::string> wanted = wanted_quantities(spec, s, rows);
+    if (std::find(quantities.begin(), quantities.end(), spec.cost) == quantities.end())
+        t.problems.push_back(fmt::format("cost quantity '{}' is in no run summary", spec.cost));
+    const References refs = find_references(spec, wanted, s.refs, rows, t);
+    for (std::size_t i : s.runs) t.rows.push_back(compare_run(st, i, rows[i], t, refs));
+    mark_pareto_fronts(t);
     return t;
 }
 

@@ -1,0 +1,209 @@
+// Running a study: every run is `gran run` in a child process, several at a time; a run whose
+// result is complete and came from the same resolved scene is reused (resume). The completed
+// runs are then merged (study_merge.cpp).
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <spdlog/spdlog.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <thread>
+
+#include "libgran/core/h5.hpp"
+#include "libgran/study/study.hpp"
+#include "libgran/study/study_merge.hpp"
+
+extern char** environ;
+
+namespace gran {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A result that completed and came from exactly this resolved scene needs no new run.
+bool reusable(const std::string& file, const std::string& resolved) {
+    if (!fs::exists(file)) return false;
+    try {
+        h5::File f = h5::File::open_read(file);
+        const h5::Group r = f.root();
+        return r.read_int64s("performance/completed").at(0) == 1 &&
+               r.read_string("parameters/scene") == resolved;
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+pid_t spawn_run(const std::string& binary, const std::string& scene, const std::string& out,
+                const StudyRun& run, const std::string& log) {
+    std::vector<std::string> args{binary, "--quiet", "run", scene, "-o", out};
+    for (const auto& a : assignments(run)) {
+        args.push_back("--set");
+        args.push_back(a);
+    }
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
+    pid_t pid = -1;
+    const int rc = posix_spawn(&pid, binary.c_str(), &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    if (rc != 0) {
+        throw std::runtime_error(
+            fmt::format("study: cannot start '{}': {}", binary, std::strerror(rc)));
+    }
+    return pid;
+}
+
+// The runs to do; the reusable ones are marked in `have` and counted in rep.reused.
+std::vector<std::size_t> runs_to_do(const Study& st, const RunFiles& files, std::vector<bool>& have,
+                                    StudyReport& rep) {
+    std::vector<std::size_t> todo;
+    for (std::size_t i = 0; i < st.runs.size(); ++i) {
+        if (reusable(files.result[i], st.runs[i].resolved_scene) && fs::exists(files.summary[i])) {
+            have[i] = true;
+            ++rep.reused;
+        } else {
+            todo.push_back(i);
+        }
+    }
+    return todo;
+}
+
+// Runs `todo` with at most `jobs` children at a time, until all finished or an interrupt
+// stopped them; a completed run is marked in `have`.
+class RunPool {
+  public:
+    RunPool(const Study& st, const StudyOptions& opt, const RunFiles& files,
+            std::vector<std::size_t> todo, int jobs, std::vector<bool>& have, StudyReport& rep,
+            Clock::time_point t0)
+        : st_(st),
+          opt_(opt),
+          files_(files),
+          todo_(std::move(todo)),
+          jobs_(jobs),
+          have_(have),
+          rep_(rep),
+          t0_(t0) {}
+
+    void run() {
+        while (next_ < todo_.size() || !running_.empty()) {
+            stop_on_interrupt();
+            start_runs();
+            if (running_.empty()) break;
+            wait_for_one();
+        }
+    }
+
+  private:
+    void stop_on_interrupt() {
+        if (!opt_.interrupt || !opt_.interrupt->load() || stop_) return;
+        stop_ = true;
+        rep_.interrupted = true;
+        spdlog::warn("study interrupted: stopping {} running runs (they keep what they measured)",
+                     running_.size());
+        for (const auto& [pid, r] : running_) kill(pid, SIGTERM);
+    }
+
+    void start_runs() {
+        while (!stop_ && next_ < todo_.size() && int(running_.size()) < jobs_) {
+            const std::size_t i = todo_[next_++];
+            pid_t pid = -1;
+            try {
+                pid = spawn_run(opt_.gran_binary, st_.scene, files_.result[i], st_.runs[i],
+                                files_.log[i]);
+            } catch (const std::exception& e) {
+                // E.g. the binary is being rebuilt: this run fails, the others go on.
+                ++rep_.failed;
+                spdlog::error("{}: {}", st_.runs[i].name, e.what());
+                continue;
+            }
+            running_[pid] = {i, Clock::now()};
+            rep_.max_concurrent = std::max(rep_.max_concurrent, int(running_.size()));
+        }
+    }
+
+    void wait_for_one() {
+        int status = 0;
+        const pid_t pid = waitpid(-1, &status, 0);
+        if (pid < 0) {
+            if (errno == EINTR) return;
+            throw std::runtime_error(
+                fmt::format("study: waitpid failed: {}", std::strerror(errno)));
+        }
+        auto it = running_.find(pid);
+        if (it == running_.end()) return;
+        const auto [i, started] = it->second;
+        running_.erase(it);
+        ++finished_;
+        const double secs = std::chrono::duration<double>(Clock::now() - started).count();
+        finished(i, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), secs);
+    }
+
+    void finished(std::size_t i, int code, double secs) {
+        if (code == 0) {
+            have_[i] = true;
+            ++rep_.ran;
+            if (opt_.progress) {
+                const double el = std::chrono::duration<double>(Clock::now() - t0_).count();
+                const double eta = el / double(finished_) * double(todo_.size() - finished_);
+                spdlog::info("[{}/{}] {} done in {:.1f} s (study ETA {:.0f} s)", finished_,
+                             todo_.size(), st_.runs[i].name, secs, eta);
+            }
+        } else if (code == 3 && stop_) {
+            spdlog::warn("{}: interrupted; partial result {} (not reused next time)",
+                         st_.runs[i].name, files_.result[i]);
+        } else {
+            ++rep_.failed;
+            spdlog::error("{} failed (exit {}); see {}", st_.runs[i].name, code, files_.log[i]);
+        }
+    }
+
+    const Study& st_;
+    const StudyOptions& opt_;
+    const RunFiles& files_;
+    const std::vector<std::size_t> todo_;
+    const int jobs_;
+    std::vector<bool>& have_;
+    StudyReport& rep_;
+    const Clock::time_point t0_;                                          // the study's start (ETA)
+    std::map<pid_t, std::pair<std::size_t, Clock::time_point>> running_;  // pid -> run, start
+    std::size_t next_ = 0, finished_ = 0;
+    bool stop_ = false;
+};
+
+}  // namespace
+
+StudyReport run_study(const Study& st, const StudyOptions& opt) {
+    StudyReport rep;
+    const std::string outdir = opt.output_dir.empty() ? st.output_dir : opt.output_dir;
+    const int jobs = opt.jobs > 0  ? opt.jobs
+                     : st.jobs > 0 ? st.jobs
+                                   : int(std::max(1u, std::thread::hardware_concurrency()));
+    fs::create_directories(fs::path(outdir) / "logs");
+    const RunFiles files = run_files(st, outdir);
+    std::vector<bool> have(st.runs.size(), false);
+    std::vector<std::size_t> todo = runs_to_do(st, files, have, rep);
+    spdlog::info("study {}: {} runs, {} already complete, {} to run on {} cores; results in {}",
+                 st.file, st.runs.size(), rep.reused, todo.size(), jobs, outdir);
+    const Clock::time_point t0 = Clock::now();
+    RunPool(st, opt, files, std::move(todo), jobs, have, rep, t0).run();
+    merge_study(st, outdir, files, have, t0, rep);
+    return rep;
+}
+
+}  // namespace gran
