@@ -16,6 +16,7 @@
 #include "libgran/run/run.hpp"
 #include "libgran/scene/scene.hpp"
 #include "libgran/scene/scene_reference.hpp"
+#include "libgran/study/knob.hpp"
 #include "libgran/study/study.hpp"
 #include "libgran/study/tradeoff_ladder.hpp"
 
@@ -250,8 +251,7 @@ CLI::App* add_tradeoff(CLI::App& app, CommandLine& cl) {
     tradeoff->add_option("--set", cl.treq.sets, "override a base scene key (repeatable)");
     tradeoff
         ->add_option("--knobs", cl.treq.knobs,
-                     "automatic knobs to use: dt_over_tc, stiffness, engine, kick_interval, "
-                     "N, measurement (default: all that apply)")
+                     "automatic knobs to use: " + gran::knob_names() + " (default: all that apply)")
         ->delimiter(',');
     tradeoff->add_option("--knob", cl.knob_ladders,
                          "a ladder of any scene key, cheapest first: KEY=v1,v2,... (repeatable)");
