@@ -57,11 +57,7 @@ namespace {
 // "<point>" for the key `point`, else the value the run gives the scene key ("" if none); the
 // group of a run is the "_"-joined list, its label "<last key part><value>" joined.
 std::string group_value(const StudyRun& run, const std::string& key) {
-    if (key == "point") return run.point;
-    for (const auto& [k, v] : run.overrides) {
-        if (k == key) return v;
-    }
-    return "";
+    return key == "point" ? run.point : override_value(run, key);
 }
 
 std::string group_of(const StudyRun& run, const std::vector<std::string>& keys) {
