@@ -34,9 +34,9 @@
 
 #include "bench/bench_clock.hpp"
 #include "bench/vibrated_bed.hpp"
+#include "libgran/core/random.hpp"
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/scene/placement.hpp"
-#include "libgran/core/random.hpp"
 
 namespace {
 

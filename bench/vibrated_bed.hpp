@@ -4,10 +4,10 @@
 // 0.9, mu = 0.4, gamma_t = 20, open top, floor A sin(omega t) with A = d and W = (A omega)^2 (W =
 // 0: static floor). Shared by bench/bench_dem.cpp and the LAMMPS comparison
 // (bench/lammps/gran_observables.cpp) so both time the same system.
+#include <yaml-cpp/yaml.h>
+
 #include <cmath>
 #include <numbers>
-
-#include <yaml-cpp/yaml.h>
 
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/scene/interactions.hpp"

@@ -25,8 +25,8 @@ A -> 0 of a vibrating wall: the event-driven engine only (the dem engine needs a
 const bool registered = register_plugin<Driver, SawtoothWall>(
     "sawtooth_wall",
     "sawtooth vibrating wall: particles meet the wall moving into the gas at speed v0",
-    wall_schema({real("velocity", "", "velocity", "wall speed v0 (directed into the gas)", 0,
-                      1e308, true)}),
+    wall_schema({real("velocity", "", "velocity", "wall speed v0 (directed into the gas)", 0, 1e308,
+                      true)}),
     wall_description(kDescription));
 
 }  // namespace

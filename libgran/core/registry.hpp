@@ -55,7 +55,8 @@ class Registry {
     std::map<std::string, Entry> entries_;
 };
 
-struct SceneInfo;  // what plugin factories may read about the scene (libgran/plugins/scene_info.hpp)
+struct SceneInfo;  // what plugin factories may read about the scene
+                   // (libgran/plugins/scene_info.hpp)
 
 // A plugin whose product is a class template over the dimension (drivers, observables): one
 // factory for disks (2) and one for spheres (3).

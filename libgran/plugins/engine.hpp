@@ -67,7 +67,7 @@ struct EngineDemands {
         bool replaces_contact = false;  // a rule instead of a contact (a thermal wall)
     };
     std::vector<Wall> walls;
-    std::vector<std::size_t> kick_drivers;            // drivers with kick events
+    std::vector<std::size_t> kick_drivers;           // drivers with kick events
     std::vector<std::size_t> collision_observables;  // observables asking for collision records
 };
 

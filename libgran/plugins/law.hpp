@@ -51,9 +51,9 @@ namespace gran {
 // with no radius: its contact distance is the grain's radius).
 struct ContactPartner {
     std::string name;
-    double mass = 1;             // +inf for a wall
-    double diameter = 1;         // 0 for a wall
-    double inertia_factor = 0.5; // I = q m sigma^2 / 4
+    double mass = 1;              // +inf for a wall
+    double diameter = 1;          // 0 for a wall
+    double inertia_factor = 0.5;  // I = q m sigma^2 / 4
     bool wall = false;
 };
 
@@ -121,14 +121,13 @@ restitution (the Enskog pressure of `profiles`) use the law's nominal value, giv
 below. A law is one file in `species/` (docs/architecture.md).)md";
 
 template <class L>
-concept InteractionLaw =
-    std::is_trivially_copyable_v<typename L::Pair> &&
+concept InteractionLaw = std::is_trivially_copyable_v<typename L::Pair> &&
     requires(const Params& p, const ContactPartner& a, const LawContext& c,
              const typename L::Pair& pair) {
-        { L::resolve(p, a, a, c) } -> std::same_as<typename L::Pair>;
-        { L::nominal_restitution(pair) } -> std::convertible_to<double>;
-        { L::rotates(pair) } -> std::convertible_to<bool>;
-    };
+    { L::resolve(p, a, a, c) } -> std::same_as<typename L::Pair>;
+    { L::nominal_restitution(pair) } -> std::convertible_to<double>;
+    { L::rotates(pair) } -> std::convertible_to<bool>;
+};
 
 template <class L>
 concept HardSphereLaw = InteractionLaw<L> && requires(const typename L::Pair& pair, double v) {
@@ -152,9 +151,9 @@ struct ContactTable {
     const LawPlugin* law = nullptr;
     std::shared_ptr<const LawTableBase> table;
     std::size_t species = 0;
-    std::vector<std::string> laws;   // the laws the scene names, in order of first use
-    std::vector<std::string> walls;  // wall partner names (a wall driver's name, or "box")
-    bool rotating = false;           // some contact needs angular velocities
+    std::vector<std::string> laws;            // the laws the scene names, in order of first use
+    std::vector<std::string> walls;           // wall partner names (a wall driver's name, or "box")
+    bool rotating = false;                    // some contact needs angular velocities
     std::vector<double> nominal_restitution;  // per species pair, ns x ns
 
     std::size_t pair_index(std::size_t a, std::size_t b) const { return a * species + b; }

@@ -64,7 +64,6 @@ Each entry of the scene's `observables` list is `{type: <name>, ...parameters}`;
 autocorrelation time in samples), `samples` and `converged` (0: no blocking plateau, the error is a
 lower bound); the summary gives `{value, error, unit, n_eff}` (docs/physics.md, "Error bars").)md";
 
-
 inline const char* component_name(int a) {
     return a == 0 ? "x" : (a == 1 ? "y" : "z");
 }

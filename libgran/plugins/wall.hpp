@@ -26,12 +26,12 @@ class WallReflection {
 
 template <int D>
 struct WallSpec {
-    std::string partner;    // its name in `interactions` (the driver's name)
+    std::string partner;  // its name in `interactions` (the driver's name)
     int axis = 0;
-    int side = 0;           // 0: at 0 (lower), 1: at L (upper)
-    WallMotion motion;      // prescribed motion along the normal (WallMotion::fixed(): static)
-    std::string motion_key = "type";           // the driver key that chose the motion (messages)
-    WallReflection<D>* reflection = nullptr;   // null: a contact with the law of `interactions`
+    int side = 0;       // 0: at 0 (lower), 1: at L (upper)
+    WallMotion motion;  // prescribed motion along the normal (WallMotion::fixed(): static)
+    std::string motion_key = "type";          // the driver key that chose the motion (messages)
+    WallReflection<D>* reflection = nullptr;  // null: a contact with the law of `interactions`
 };
 
 }  // namespace gran

@@ -147,8 +147,9 @@ class DemRunner final : public EngineRunner<D> {
         try {
             for (std::size_t a = 0; a < ns; ++a) {
                 for (std::size_t b = a; b < ns; ++b) {
-                    report(sp[a].name + "-" + sp[b].name,
-                           probe_pair_collision<D>(sc_.species, sc_.contacts, a, b, v, engine_.dt()));
+                    report(
+                        sp[a].name + "-" + sp[b].name,
+                        probe_pair_collision<D>(sc_.species, sc_.contacts, a, b, v, engine_.dt()));
                 }
             }
             std::vector<std::size_t> walls;
@@ -158,9 +159,9 @@ class DemRunner final : public EngineRunner<D> {
                 if (std::find(walls.begin(), walls.end(), w) != walls.end()) continue;
                 walls.push_back(w);
                 for (std::size_t s = 0; s < ns; ++s) {
-                    report(sp[s].name + "-" + sc_.contacts.walls[w],
-                           probe_wall_collision<D>(sc_.species, sc_.contacts, s, w, v,
-                                                   engine_.dt()));
+                    report(
+                        sp[s].name + "-" + sc_.contacts.walls[w],
+                        probe_wall_collision<D>(sc_.species, sc_.contacts, s, w, v, engine_.dt()));
                 }
             }
         } catch (const std::exception& e) {

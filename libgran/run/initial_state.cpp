@@ -27,7 +27,8 @@ Particles<D> initial_particles(const Scene& sc) {
     } catch (const PlacementError& e) {
         throw SceneError(sc.box_location + ": " + e.what());
     }
-    if (sc.contacts.rotating && sc.engine->thermal_initial_spin) p.w.assign(p.size(), ang_zero<D>());
+    if (sc.contacts.rotating && sc.engine->thermal_initial_spin)
+        p.w.assign(p.size(), ang_zero<D>());
     Rng vrng = make_rng(sc.seed, Stream::Velocities);
     maxwellian_velocities<D>(p, sc.species, sc.temperature, vrng);
     return p;

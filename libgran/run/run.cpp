@@ -10,10 +10,10 @@
 #include "libgran/plugins/engine.hpp"
 #include "libgran/run/equilibration.hpp"
 #include "libgran/run/frames.hpp"
+#include "libgran/run/initial_state.hpp"
 #include "libgran/run/progress.hpp"
 #include "libgran/run/result_file.hpp"
 #include "libgran/run/result_sink.hpp"
-#include "libgran/run/initial_state.hpp"
 #include "libgran/run/simulation.hpp"
 #include "libgran/run/watchdog.hpp"
 

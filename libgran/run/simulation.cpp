@@ -19,13 +19,15 @@ namespace {
 template <int D>
 void build(const Scene& sc, SimulationState<D>& st) {
     for (std::size_t k = 0; k < sc.drivers.size(); ++k) {
-        st.drivers.push_back(DriverRegistry::instance().find(sc.drivers[k].type)->template make<D>(
-            sc.drivers[k].params, plugin_info(sc, k)));
+        st.drivers.push_back(DriverRegistry::instance()
+                                 .find(sc.drivers[k].type)
+                                 ->template make<D>(sc.drivers[k].params, plugin_info(sc, k)));
     }
     for (std::size_t k = 0; k < sc.observables.size(); ++k) {
         st.observables.push_back(
-            ObservableRegistry::instance().find(sc.observables[k].type)->template make<D>(
-                sc.observables[k].params, plugin_info(sc, k)));
+            ObservableRegistry::instance()
+                .find(sc.observables[k].type)
+                ->template make<D>(sc.observables[k].params, plugin_info(sc, k)));
     }
     st.runner = sc.engine->template make<D>(sc, st.drivers, st.observables);
 }

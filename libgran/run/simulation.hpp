@@ -33,8 +33,8 @@ struct SimulationState {
 // engine's work units (events, steps); the first reached ends the advance. All absent: nothing.
 struct Until {
     double time = std::numeric_limits<double>::infinity();  // absolute
-    std::uint64_t collisions = 0;                            // more collisions (0: no limit)
-    std::uint64_t work = 0;                                  // more events / steps (0: no limit)
+    std::uint64_t collisions = 0;                           // more collisions (0: no limit)
+    std::uint64_t work = 0;                                 // more events / steps (0: no limit)
 };
 
 class Simulation {

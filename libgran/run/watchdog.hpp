@@ -23,7 +23,6 @@
 
 namespace gran {
 
-
 // One window of event-driven work: `events` events took the simulated time from t_begin to t_end.
 struct ProgressWindow {
     std::uint64_t events = 0;

@@ -137,7 +137,9 @@ const bool registered = PlacementRegistry::instance().add(
       "vacancies spread evenly, species shuffled",
       {}},
      [](const Box<2>& b, const SpeciesTable& t, Rng& r) { return place_close_packed<2>(b, t, r); },
-     [](const Box<3>& b, const SpeciesTable& t, Rng& r) { return place_close_packed<3>(b, t, r); }});
+     [](const Box<3>& b, const SpeciesTable& t, Rng& r) {
+         return place_close_packed<3>(b, t, r);
+     }});
 
 }  // namespace
 

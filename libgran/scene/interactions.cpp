@@ -18,8 +18,9 @@ constexpr const char* kDefaultLaw = "constant_restitution";
 const LawPlugin& find_law(const std::string& name, const Where& w, const YAML::Node& n) {
     const LawPlugin* law = LawRegistry::instance().find(name);
     if (!law) {
-        fail(w, n,
-             fmt::format("unknown law '{}'; known laws: {}", name, LawRegistry::instance().names()));
+        fail(
+            w, n,
+            fmt::format("unknown law '{}'; known laws: {}", name, LawRegistry::instance().names()));
     }
     return *law;
 }
@@ -117,18 +118,19 @@ void read_pair(const YAML::Node& entry, const Where& wk, const SpeciesTable& spe
     bool wall0 = false, wall1 = false;
     std::size_t i0 = partner_index(n0, species, walls, wk.child("between"), between, wall0);
     std::size_t i1 = partner_index(n1, species, walls, wk.child("between"), between, wall1);
-    if (wall0 && wall1) fail(wk.child("between"), between, "a contact between two walls has no law");
+    if (wall0 && wall1)
+        fail(wk.child("between"), between, "a contact between two walls has no law");
     if (wall0) std::swap(i0, i1);  // i0: the species, i1: the species or wall
     const bool wall = wall0 || wall1;
     const Level& above = wall ? at_walls : defaults;
     const LawPlugin& law = law_of(entry, above.law->name, wk);
     const Level& level = c.overrides.emplace_back(Level{
-        &law, read_params(entry, inheriting(law, same_law(above, law), pair_override_schema()),
-                          wk)});
+        &law,
+        read_params(entry, inheriting(law, same_law(above, law), pair_override_schema()), wk)});
     const std::size_t ns = c.ns;
-    const std::vector<std::size_t> slots = wall ? std::vector<std::size_t>{c.wall(i1, i0)}
-                                                : std::vector<std::size_t>{i0 * ns + i1,
-                                                                           i1 * ns + i0};
+    const std::vector<std::size_t> slots =
+        wall ? std::vector<std::size_t>{c.wall(i1, i0)}
+             : std::vector<std::size_t>{i0 * ns + i1, i1 * ns + i0};
     if (c.overridden[slots[0]]) {
         fail(wk.child("between"), between,
              fmt::format("the contact {}-{} is already given by another entry", n0, n1));
@@ -187,10 +189,10 @@ ContactTable resolve_contacts(const Contacts& c, const SpeciesTable& species,
     auto table = t.law->make_table(c.levels.size());
     t.nominal_restitution.assign(c.ns * c.ns, 1.0);
     const auto partner = [&](std::size_t k, bool second) {
-        if (k < c.ns * c.ns)
-            return species_partner(species.species[second ? k % c.ns : k / c.ns]);
+        if (k < c.ns * c.ns) return species_partner(species.species[second ? k % c.ns : k / c.ns]);
         const std::size_t wk = k - c.ns * c.ns;
-        return second ? wall_partner(walls[wk / c.ns]) : species_partner(species.species[wk % c.ns]);
+        return second ? wall_partner(walls[wk / c.ns])
+                      : species_partner(species.species[wk % c.ns]);
     };
     for (std::size_t k = 0; k < c.levels.size(); ++k) {
         const bool pair = k < c.ns * c.ns;
@@ -203,8 +205,8 @@ ContactTable resolve_contacts(const Contacts& c, const SpeciesTable& species,
             const double nominal = law.nominal_restitution(*one, 0);
             const bool rotates = law.rotates(*one, 0);
             if (mixed) {
-                set_mixed_contact(*table, k, *law.hard_sphere,
-                                  law.hard_sphere->pair_at(*one, 0), nominal, rotates);
+                set_mixed_contact(*table, k, *law.hard_sphere, law.hard_sphere->pair_at(*one, 0),
+                                  nominal, rotates);
             } else {
                 law.copy(*table, k, *one, 0);
             }

@@ -31,8 +31,7 @@ namespace gran {
 // `resolved` (a valid `interactions` section that reruns identically).
 ContactTable read_interactions(const YAML::Node& node, const SpeciesTable& species,
                                const std::vector<std::string>& wall_partners,
-                               const LawContext& context, const Where& where,
-                               YAML::Node& resolved);
+                               const LawContext& context, const Where& where, YAML::Node& resolved);
 
 // The keys of the section itself (besides the default law's), for `gran list` and the reference.
 Schema interactions_schema();

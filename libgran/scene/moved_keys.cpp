@@ -18,17 +18,20 @@ struct Moved {
 
 // engine.<key>: the soft-contact keys are the keys of the contact law.
 const std::vector<Moved> kEngineKeys{
-    {"contact_law", "`interactions: {law: <name>}` (linear_dashpot, cundall_strack, "
-                    "hertz_mindlin; `gran list laws`)"},
-    {"stiffness", "`interactions: {law: linear_dashpot, stiffness: <k_n>}` (per contact in "
-                  "`interactions.pairs`)"},
+    {"contact_law",
+     "`interactions: {law: <name>}` (linear_dashpot, cundall_strack, "
+     "hertz_mindlin; `gran list laws`)"},
+    {"stiffness",
+     "`interactions: {law: linear_dashpot, stiffness: <k_n>}` (per contact in "
+     "`interactions.pairs`)"},
     {"contact_time", "`interactions: {law: linear_dashpot, contact_time: <t_c>}`"},
     {"friction", "`interactions: {friction: <mu>}` (per contact in `interactions.pairs`)"},
     {"tangential_damping", "`interactions: {tangential_damping: <c_t>}`"},
     {"tangential_damping_ratio", "`interactions: {tangential_damping_ratio: <c_t / c_n>}`"},
     {"tangential_stiffness_ratio", "`interactions: {tangential_stiffness_ratio: <k_t / k_n>}`"},
-    {"reference_speed", "`interactions: {reference_speed: <v>}` (hertz_mindlin), and "
-                        "`engine.probe_speed` for the isolated test collisions of a dem run"},
+    {"reference_speed",
+     "`interactions: {reference_speed: <v>}` (hertz_mindlin), and "
+     "`engine.probe_speed` for the isolated test collisions of a dem run"},
     {"wall_friction", "`interactions: {walls: {friction: <mu_w>}}`"},
     {"wall_tangential_damping", "`interactions: {walls: {tangential_damping: <c_t>}}`"},
 };

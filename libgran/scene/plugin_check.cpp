@@ -33,24 +33,25 @@ void check_drivers(Scene& sc, EngineDemands& demands, std::vector<std::string>& 
     std::array<const PluginEntry*, 2 * D> owner{};
     for (std::size_t k = 0; k < sc.drivers.size(); ++k) {
         const PluginEntry& e = sc.drivers[k];
-        auto driver = DriverRegistry::instance().find(e.type)->template make<D>(
-            e.params, plugin_info(sc, k));
+        auto driver =
+            DriverRegistry::instance().find(e.type)->template make<D>(e.params, plugin_info(sc, k));
         for (const WallSpec<D>& w : driver->walls()) {
             const auto*& slot = owner[std::size_t(2 * w.axis + w.side)];
             if (slot) {
-                e.params.fail("type", fmt::format("the {} wall of axis {} is already given by "
-                                                  "driver '{}'",
-                                                  w.side == 0 ? "lower" : "upper", w.axis,
-                                                  slot->name));
+                e.params.fail("type",
+                              fmt::format("the {} wall of axis {} is already given by "
+                                          "driver '{}'",
+                                          w.side == 0 ? "lower" : "upper", w.axis, slot->name));
             }
             slot = &e;
             demands.walls.push_back(
                 {k, w.partner, w.axis, w.side, w.motion, w.motion_key, w.reflection != nullptr});
-            if (!w.reflection && std::find(partners.begin(), partners.end(), w.partner) ==
-                                     partners.end()) {
+            if (!w.reflection &&
+                std::find(partners.begin(), partners.end(), w.partner) == partners.end()) {
                 if (w.partner == "box") {
-                    e.params.fail("name", "`box` names the walls no driver claims: give this "
-                                          "driver another `name`");
+                    e.params.fail("name",
+                                  "`box` names the walls no driver claims: give this "
+                                  "driver another `name`");
                 }
                 partners.push_back(w.partner);
             }
@@ -90,8 +91,8 @@ void check_plugins(Scene& sc, const YAML::Node& root, const Where& top, YAML::No
     check_drivers<D>(sc, demands, partners);
     const LawContext context{D, sc.temperature, sc.species.min_mass()};
     YAML::Node ri;
-    sc.contacts = read_interactions(child(root, "interactions"), sc.species, partners, context,
-                                    top, ri);
+    sc.contacts =
+        read_interactions(child(root, "interactions"), sc.species, partners, context, top, ri);
     res["interactions"] = ri;
     sc.info.rotating = sc.contacts.rotating;
     sc.info.nominal_restitution = sc.contacts.nominal_restitution;

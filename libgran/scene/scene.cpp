@@ -137,7 +137,8 @@ void read_engine(const YAML::Node& root, const Where& top, Scene& sc, YAML::Node
     sc.engine = EngineRegistry::instance().find(name);
     if (!sc.engine) {
         fail(we.child("type"), type,
-             fmt::format("unknown engine '{}'; known: {}", name, EngineRegistry::instance().names()));
+             fmt::format("unknown engine '{}'; known: {}", name,
+                         EngineRegistry::instance().names()));
     }
     Params ep = read_params(node, sc.engine->schema, we, {"type"});
     sc.engine_settings = PluginEntry{sc.engine->name, sc.engine->name, ep};
@@ -221,9 +222,9 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     YAML::Node res;
     const Params tp = read_top(root, top, sc, res);
     YAML::Node rs;
-    sc.species = read_species(child(root, "species"),
-                              tp.has("particles") ? tp.integer("particles") : 0, sc.dimension, top,
-                              rs);
+    sc.species =
+        read_species(child(root, "species"), tp.has("particles") ? tp.integer("particles") : 0,
+                     sc.dimension, top, rs);
     if (tp.has("particles") && std::int64_t(sc.species.total_count()) != tp.integer("particles")) {
         tp.fail("particles", fmt::format("species counts add up to {}, not to particles = {}",
                                          sc.species.total_count(), tp.integer("particles")));

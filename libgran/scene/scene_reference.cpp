@@ -46,8 +46,9 @@ Category category(const std::string& name) {
         return c;
     }
     if (name == "laws") {
-        return {"laws (interactions.law)", "Interaction laws (`interactions.law`, `gran list laws`)",
-                kLawsDescription, entries_of(LawRegistry::instance().all())};
+        return {"laws (interactions.law)",
+                "Interaction laws (`interactions.law`, `gran list laws`)", kLawsDescription,
+                entries_of(LawRegistry::instance().all())};
     }
     if (name == "engines") {
         return {"engines (engine.type)", "Engines (`engine.type`, `gran list engines`)",

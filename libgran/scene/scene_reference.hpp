@@ -1,7 +1,8 @@
 #pragma once
-// `gran list`: the scene sections, laws, engines, drivers, observables and placements with their keys, as plain
-// text or as the Markdown page docs/scene-reference.md (`gran list --markdown`). Everything comes
-// from the declarations (schemas, summaries, descriptions); nothing here names a section or plugin.
+// `gran list`: the scene sections, laws, engines, drivers, observables and placements with their
+// keys, as plain text or as the Markdown page docs/scene-reference.md (`gran list --markdown`).
+// Everything comes from the declarations (schemas, summaries, descriptions); nothing here names a
+// section or plugin.
 #include <string>
 #include <vector>
 

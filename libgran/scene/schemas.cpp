@@ -1,8 +1,7 @@
 #include "libgran/scene/schemas.hpp"
 
-#include "libgran/scene/scene.hpp"
-
 #include "libgran/scene/interactions.hpp"
+#include "libgran/scene/scene.hpp"
 #include "libgran/scene/species.hpp"
 
 namespace gran {
@@ -214,8 +213,10 @@ std::vector<SectionDoc> scene_sections() {
          "`box`), and the law keys to change",
          pair_override_schema(), kPairs},
         {"initial", "initial configuration", initial_schema(), kInitial},
-        {"engine", "engine type; its numerical settings are listed with each engine",
-         {text("type", "event_driven", "simulation engine (`gran list engines`)")}, kEngine},
+        {"engine",
+         "engine type; its numerical settings are listed with each engine",
+         {text("type", "event_driven", "simulation engine (`gran list engines`)")},
+         kEngine},
         {"run", "run schedule", run_schema(), kRun},
         {"run.watchdog", "stops runs that hang or produce NaN (on by default)", watchdog_schema(),
          kWatchdog},

@@ -3,9 +3,9 @@
 // momentum, never overlap, and collide at the Enskog frequency
 //   omega = S n sigma^(d-1) g(sigma) sqrt(T/m)   (S = 2 sqrt(pi) in 2D, 4 sqrt(pi) in 3D)
 // with the Henderson (2D) or Carnahan-Starling (3D) contact value. Tolerance 3%, as for gran's
-// engine (tests/libgran/engines/event_driven/test_equilibrium_collision_frequency.cpp): the statistical error of 2e5
-// collisions is ~0.3% and the contact values are good to <1% at these densities, while a wrong
-// contact distance or missed collisions shift omega by more.
+// engine (tests/libgran/engines/event_driven/test_equilibrium_collision_frequency.cpp): the
+// statistical error of 2e5 collisions is ~0.3% and the contact values are good to <1% at these
+// densities, while a wrong contact distance or missed collisions shift omega by more.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -38,9 +38,9 @@ template <int D>
 std::unique_ptr<Driver<D>> thermal_wall(double temperature, const char* tangential,
                                         std::uint64_t seed) {
     const auto* plugin = DriverRegistry::instance().find("thermal_wall");
-    const YAML::Node node = YAML::Load(fmt::format(
-        "{{type: thermal_wall, axis: y, temperature: {}, tangential: {}}}", temperature,
-        tangential));
+    const YAML::Node node =
+        YAML::Load(fmt::format("{{type: thermal_wall, axis: y, temperature: {}, tangential: {}}}",
+                               temperature, tangential));
     SceneInfo info;
     info.dimension = D;
     info.seed = seed;

@@ -37,8 +37,8 @@ const char* kDemContacts =
     "{law: linear_dashpot, restitution: 0.5, stiffness: 2.0e+5, pairs: [{between: [g, box], "
     "restitution: 1}]}";
 
-BedState run_bed(const std::string& engine, const std::string& contacts,
-                 const std::string& driver, const std::string& tag) {
+BedState run_bed(const std::string& engine, const std::string& contacts, const std::string& driver,
+                 const std::string& tag) {
     const std::string yaml = fmt::format(R"(
 dimension: 2
 seed: 1

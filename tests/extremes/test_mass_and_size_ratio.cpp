@@ -16,8 +16,8 @@
 #include "libgran/run/run.hpp"
 #include "libgran/scene/placement.hpp"
 #include "libgran/scene/scene.hpp"
-#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/periodic_cube.hpp"
 #include "tests/support/run_scene.hpp"
 

@@ -24,13 +24,13 @@
 
 #include <cmath>
 
-#include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/core/h5.hpp"
 #include "libgran/core/kinetic_theory.hpp"
-#include "libgran/scene/placement.hpp"
+#include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/run/run.hpp"
-#include "tests/support/contacts.hpp"
+#include "libgran/scene/placement.hpp"
 #include "tests/support/conservation.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/contains.hpp"
 #include "tests/support/run_scene.hpp"
 

@@ -10,11 +10,11 @@
 
 #include <cmath>
 
-#include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/core/h5.hpp"
+#include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/placement.hpp"
-#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/run_scene.hpp"
 
 namespace gran {

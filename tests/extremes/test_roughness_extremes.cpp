@@ -10,11 +10,11 @@
 #include <cmath>
 
 #include "libgran/engines/event_driven/engine.hpp"
-#include "libgran/scene/placement.hpp"
 #include "libgran/run/run.hpp"
+#include "libgran/scene/placement.hpp"
 #include "libgran/scene/scene.hpp"
-#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/contains.hpp"
 
 namespace gran {

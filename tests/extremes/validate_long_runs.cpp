@@ -25,8 +25,8 @@
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/placement.hpp"
-#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/periodic_cube.hpp"
 
 namespace gran {

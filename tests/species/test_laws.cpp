@@ -37,7 +37,8 @@ TEST(Laws, ConstantRestitutionIsExactAtEveryImpactSpeed) {
 }
 
 TEST(Laws, ImpactSpeedLawsAreTheirKernelsBitForBitAtEitherSignOfTheImpactSpeed) {
-    const auto mf = testing::contacts_of(one_species(), "{law: mcnamara_falcon, r0: 0.95, v0: 0.3}");
+    const auto mf =
+        testing::contacts_of(one_species(), "{law: mcnamara_falcon, r0: 0.95, v0: 0.3}");
     const auto ve = testing::contacts_of(one_species(), "{law: viscoelastic, gamma: 0.1}");
     for (double v = 1e-4; v < 1e4; v *= 1.7) {
         EXPECT_EQ(restitution_at(mf, v), mcnamara_falcon_restitution(v, 0.95, 0.3));

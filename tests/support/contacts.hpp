@@ -17,8 +17,8 @@ inline ContactTable contacts_of(const SpeciesTable& species, const std::string& 
                                 double temperature = 1) {
     YAML::Node resolved;
     const LawContext context{dimension, temperature, species.min_mass()};
-    return read_interactions(YAML::Load(interactions.empty() ? "{}" : interactions), species,
-                             walls, context, Where{"test", ""}, resolved);
+    return read_interactions(YAML::Load(interactions.empty() ? "{}" : interactions), species, walls,
+                             context, Where{"test", ""}, resolved);
 }
 
 // Angular velocities (zero) when the contacts need them and the particles have none.

@@ -31,9 +31,8 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
-#include <vector>
-
 #include <string>
+#include <vector>
 
 #include "libgran/core/box.hpp"
 #include "libgran/core/particles.hpp"
@@ -175,7 +174,7 @@ class DemEngine {
     Box<D> box_;
     ContactTable contacts_;
     DemLawLoops<D> loops_;
-    bool history_ = false;     // the law keeps a tangential spring per contact
+    bool history_ = false;       // the law keeps a tangential spring per contact
     std::vector<double> sigma_;  // contact distance R_i + R_j per species pair (ns x ns)
     Particles<D> p_;
     DemSettings settings_;

@@ -82,7 +82,7 @@ void DemEngine<D>::pair_forces(double dt_advance) {
         Vec<D> d;
         for (std::size_t a = 0; a < std::size_t(D); ++a) d[int(a)] = dc[a];
         const double dist = std::sqrt(dist2);
-        const Vec<D> nrm = (1.0 / dist) * d;  // from j to i
+        const Vec<D> nrm = (1.0 / dist) * d;   // from j to i
         const double delta = sigma_ij - dist;  // (A6)
         const bool forms = touching[k] == 0;
         touching[k] = 1;
@@ -146,8 +146,8 @@ void DemEngine<D>::wall_forces(double dt_advance) {
     for (std::size_t c = 0; c < kWalls; ++c) {
         const Wall& w = walls_[c];
         if (!w.present) continue;
-        const typename L::Pair* params = contacts_.template contacts<L>() +
-                                         contacts_.wall_index(w.partner, 0);  // per species
+        const typename L::Pair* params =
+            contacts_.template contacts<L>() + contacts_.wall_index(w.partner, 0);  // per species
         const int a = int(c / 2);
         const double inward = c % 2 == 0 ? 1.0 : -1.0;
         const double surface = w.base + w.motion.position(t);
@@ -251,12 +251,12 @@ double DemEngine<D>::elastic_energy_with() const {
 // Registers the loops of law L for disks and spheres (called by register_law<L>).
 template <class L>
 void register_dem_loops(const std::string& name) {
-    Registry<DemLawLoops<2>>::instance().add(
-        {name, &DemEngine<2>::template accumulate_forces_with<L>,
-         &DemEngine<2>::template elastic_energy_with<L>});
-    Registry<DemLawLoops<3>>::instance().add(
-        {name, &DemEngine<3>::template accumulate_forces_with<L>,
-         &DemEngine<3>::template elastic_energy_with<L>});
+    Registry<DemLawLoops<2>>::instance().add({name,
+                                              &DemEngine<2>::template accumulate_forces_with<L>,
+                                              &DemEngine<2>::template elastic_energy_with<L>});
+    Registry<DemLawLoops<3>>::instance().add({name,
+                                              &DemEngine<3>::template accumulate_forces_with<L>,
+                                              &DemEngine<3>::template elastic_energy_with<L>});
 }
 
 }  // namespace gran

@@ -51,9 +51,9 @@ Requested requested(const ContactTable& table, std::size_t index, double sigma) 
 template <int D>
 DemProbeResult probe_pair_collision(const SpeciesTable& species, const ContactTable& table,
                                     std::size_t a, std::size_t b, double speed, double dt) {
-    const Requested P = requested(
-        table, table.pair_index(a, b),
-        0.5 * (species.species[a].diameter + species.species[b].diameter));
+    const Requested P =
+        requested(table, table.pair_index(a, b),
+                  0.5 * (species.species[a].diameter + species.species[b].diameter));
     const double dmax = species.max_diameter();
     Box<D> box;
     box.length = Vec<D>::Constant(8 * dmax + 8 * P.sigma);

@@ -23,14 +23,16 @@ SpeciesTable two_species() {
 
 // The normal restitution of every contact of a table, through the law's hard-sphere form.
 double alpha(const ContactTable& c, std::size_t index) {
-    return c.law->hard_sphere->normal_restitution(c.law->hard_sphere->pair_at(*c.table, index), 1.0);
+    return c.law->hard_sphere->normal_restitution(c.law->hard_sphere->pair_at(*c.table, index),
+                                                  1.0);
 }
 
 TEST(Interactions, PairsOverrideOneContactAndWallsInheritTheDefaults) {
     const auto t = two_species();
     const ContactTable c = testing::contacts_of(
-        t, "{alpha: 0.9, pairs: [{between: [heavy, light], alpha: 0.8}, {between: [light, lid], "
-           "alpha: 0.5}]}",
+        t,
+        "{alpha: 0.9, pairs: [{between: [heavy, light], alpha: 0.8}, {between: [light, lid], "
+        "alpha: 0.5}]}",
         2, {"lid", "box"});
     EXPECT_EQ(c.law->name, "constant_restitution");
     EXPECT_EQ(alpha(c, c.pair_index(0, 0)), 0.9);
@@ -66,8 +68,9 @@ TEST(Interactions, AnOverrideWithAnotherLawTakesThatLawsDefaultsAndMixesLaws) {
 TEST(Interactions, SoftContactKeysResolvePerPairWithTheReducedMass) {
     const auto t = two_species();
     const ContactTable c = testing::contacts_of(
-        t, "{law: linear_dashpot, restitution: 0.9, contact_time: 0.01, pairs: [{between: "
-           "[heavy, light], friction: 0.3}]}",
+        t,
+        "{law: linear_dashpot, restitution: 0.9, contact_time: 0.01, pairs: [{between: "
+        "[heavy, light], friction: 0.3}]}",
         3);
     const auto& soft = *c.law->soft_contact;
     // The contact time is what every contact was resolved for, whatever its reduced mass.
@@ -94,8 +97,8 @@ TEST(Interactions, RefusesUnknownPartnersTwiceGivenContactsWallWallPairsAndUnkno
         "{pairs: [{between: [heavy, light], alpha: 0.5}, {between: [light, heavy], alpha: 0.6}]}",
         {"interactions.pairs[1].between", "already given"});
     expect_refused("{pairs: [{between: [box, box], alpha: 0.5}]}", {"two walls"});
-    expect_refused("{law: hertzian}", {"interactions.law", "unknown law 'hertzian'",
-                                       "constant_restitution"});
+    expect_refused("{law: hertzian}",
+                   {"interactions.law", "unknown law 'hertzian'", "constant_restitution"});
     expect_refused("{walls: {stiffness: 1}}", {"interactions.walls.stiffness", "unknown key"});
 }
 
@@ -121,9 +124,8 @@ TEST(Interactions, KeysThatMovedFromEngineAndWallDriversAreRefusedWithTheNewSpel
                          {"engine.contact_law", "interactions: {law: <name>}"});
     expect_scene_refused("engine: {type: dem, wall_friction: 0}\n",
                          {"interactions: {walls: {friction: <mu_w>}}"});
-    expect_scene_refused(
-        "drivers: [{type: static_wall, axis: y, name: lid, restitution: 0.5}]\n",
-        {"drivers[0].restitution", "between: [<species>, lid]", "interactions"});
+    expect_scene_refused("drivers: [{type: static_wall, axis: y, name: lid, restitution: 0.5}]\n",
+                         {"drivers[0].restitution", "between: [<species>, lid]", "interactions"});
 }
 
 TEST(Interactions, EveryRefusalHappensWhenTheSceneIsLoadedWithoutAnEngine) {

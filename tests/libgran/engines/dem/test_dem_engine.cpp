@@ -186,7 +186,8 @@ TEST(DemEngine, HeadOnPairCollisionHasTheRequestedRestitutionAndDuration3D) {
 TEST(DemEngine, CundallStrackAndHertzMindlinHeadOnCollisionsMatchTheirClosedForms) {
     const std::string linear = "contact_time: 2e-3, restitution: 0.9";
     const std::string hertz = linear + ", reference_speed: 1.5";
-    for (const auto& [law, keys] : {std::pair{"cundall_strack", linear}, {"hertz_mindlin", hertz}}) {
+    for (const auto& [law, keys] :
+         {std::pair{"cundall_strack", linear}, {"hertz_mindlin", hertz}}) {
         const Collision c = head_on_pair<3>(law, keys, 1.5, 0.3);
         EXPECT_NEAR(c.restitution, 0.9, 0.005 * 0.9) << law;
         EXPECT_NEAR(c.duration, 2e-3, 0.01 * 2e-3) << law;
@@ -208,8 +209,8 @@ void check_wall_collision(double phase) {
         soft(t, "linear_dashpot", "stiffness: 1e5, restitution: 0.5", "restitution: 0.92");
     const double t_c = duration(contacts, contacts.wall_index(0, 0));
     // Infinite wall mass: the contact's reduced mass is the grain's, m = 2.
-    EXPECT_DOUBLE_EQ(t_c, linear_contact_duration(1e5, 2.0,
-                                                  linear_damping_from_restitution(1e5, 2.0, 0.92)));
+    EXPECT_DOUBLE_EQ(
+        t_c, linear_contact_duration(1e5, 2.0, linear_damping_from_restitution(1e5, 2.0, 0.92)));
     const double dt = t_c / 50, v = 1.3;
     Particles<D> p;
     p.resize(1, false);
@@ -282,8 +283,8 @@ template <int D>
 void check_rolling(const std::string& law, double q) {
     const double g = 1, v0 = 1, k = 2e5;
     const SpeciesTable t = table_of({make_species("a", 1, 1, q, 1)});
-    const ContactTable contacts = soft(
-        t, law, "stiffness: 2e5, restitution: 0.9, friction: 0.4, tangential_damping: 50");
+    const ContactTable contacts =
+        soft(t, law, "stiffness: 2e5, restitution: 0.9, friction: 0.4, tangential_damping: 50");
     Particles<D> p;
     p.resize(1, false);
     p.r[0] = Vec<D>::Constant(2.5);

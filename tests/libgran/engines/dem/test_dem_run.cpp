@@ -27,8 +27,8 @@ double error(const YAML::Node& n) {
 // The 3D canonical bed of Bhateja et al. 2016 (5d x 5d periodic, 100 grains, A = d, sinusoid,
 // e_p = e_w = 0.9), with `extra` appended to the contact law's keys and a tall box (open top in
 // effect, the top of the box elastic).
-std::string bed3d(double frequency, const std::string& contact_extra, double gravity,
-                  double height, const std::string& drivers_extra, double measurement) {
+std::string bed3d(double frequency, const std::string& contact_extra, double gravity, double height,
+                  const std::string& drivers_extra, double measurement) {
     return fmt::format(R"(
 dimension: 3
 seed: 4

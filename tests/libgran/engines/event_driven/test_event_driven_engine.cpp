@@ -6,8 +6,8 @@
 
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/placement.hpp"
-#include "tests/support/contacts.hpp"
 #include "tests/support/conservation.hpp"
+#include "tests/support/contacts.hpp"
 #include "tests/support/periodic_cube.hpp"
 
 namespace gran {

@@ -32,8 +32,9 @@ constexpr std::size_t kFloor = 1;
 ContactTable contacts(const SpeciesTable& t, double alpha = 1.0, double floor = 1.0) {
     return testing::contacts_of(
         t,
-        fmt::format("{{alpha: {}, walls: {{alpha: 1}}, pairs: [{{between: [a, floor], alpha: {}}}]}}",
-                    alpha, floor),
+        fmt::format(
+            "{{alpha: {}, walls: {{alpha: 1}}, pairs: [{{between: [a, floor], alpha: {}}}]}}",
+            alpha, floor),
         2, {"box", "floor"});
 }
 
