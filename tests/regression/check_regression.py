@@ -85,6 +85,13 @@ def compare(result, reference, scene="", allowed=()):
     return problems, len(want), added
 
 
+def report_failure(name, problems, n, shown=10):
+    """Prints a run whose items differ from the reference, with its first `shown` differences."""
+    print(f"FAIL {name}: {len(problems)} of {n} items differ")
+    for p in problems[:shown]:
+        print("   ", p)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("gran")
@@ -114,9 +121,7 @@ def main():
                                          scene.stem, allowed)
             if problems:
                 failed += 1
-                print(f"FAIL {scene.stem}: {len(problems)} of {n} items differ")
-                for p in problems[:10]:
-                    print("   ", p)
+                report_failure(scene.stem, problems, n)
             else:
                 extra = f", {added} documented additions" if added else ""
                 print(f"ok   {scene.stem}: {n} items bit-identical{extra}")

@@ -16,7 +16,7 @@ import pathlib
 import re
 import sys
 
-from check_regression import compare
+from check_regression import compare, report_failure
 
 
 def main():
@@ -36,9 +36,7 @@ def main():
         added_total += added
         if problems:
             failed += 1
-            print(f"FAIL {name}: {len(problems)} of {n} items differ")
-            for p in problems[:5]:
-                print("   ", p)
+            report_failure(name, problems, n, shown=5)
         else:
             matched += 1
     for name in sorted(new - old):
