@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "libgran/core/build_info.hpp"
 #include "libgran/run/run.hpp"
 #include "libgran/scene/scene.hpp"
 #include "libgran/scene/scene_reference.hpp"
@@ -28,24 +29,56 @@ extern "C" void on_signal(int) {
     g_interrupt.store(true);
 }
 
+// Every signal that asks a run to end: Ctrl-C, kill, a closed terminal (SIGHUP), a batch
+// system's warning (SIGUSR1) and the CPU-time limit (SIGXCPU). Each stops the run like SIGTERM:
+// what was measured is written and the exit status is 3. No SA_RESTART: a signal interrupts a
+// study's wait for its runs, so they are stopped at once.
+void stop_on_signals() {
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = 0;
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGXCPU}) sigaction(sig, &sa, nullptr);
+}
+
+// `gran --version`: what `/provenance` records in every result.
+std::string version_text() {
+    const gran::BuildInfo& b = gran::build_info();
+    return fmt::format(
+        "gran {}\ncommit {}{}\nbuild {} ({})", b.version, b.commit,
+        b.dirty ? fmt::format(" with uncommitted changes (diff {})", b.diff_hash) : std::string(),
+        b.build_type, b.compiler);
+}
+
 // The last section of docs/scene-reference.md: the commands, which this file defines.
 const char* const kCommandLineReference =
     R"md(
 ## Command line
 
+`gran --version`: the version, the git commit (and whether the tree had uncommitted changes) and the
+build type, as recorded in every result's `/provenance` group and summary (`code`). Exit codes of
+every command: 0 success, 1 a run or an output failed, 2 an invalid scene, study or command line,
+3 interrupted.
+
 `gran run SCENE.yaml [-o OUT.h5] [--set key=value ...] [-q] [--log-level LEVEL]`: `--set` takes a
 dotted path with list indices, e.g. `--set species.1.mass=10 --set drivers.0.strength=0.1`. Output
-defaults to `results/<scene name>.h5`; the summary is written beside it as `<name>.summary.yaml`. The
-result is written to `OUT.h5.part` and renamed when complete, so a failed run never replaces an
-existing result.
+defaults to `results/<scene name>.h5`; the summary is written beside it as `<name>.summary.yaml`.
+`OUT` must end in `.h5` (or `.hdf5`), must not be a folder or an input, and its folder must be
+writable: all checked before the run starts (exit 1 otherwise). The result is written to
+`OUT.h5.part` and renamed when complete, so a failed run never replaces an existing result; a run
+that did not complete (interrupted, stopped by the watchdog) while `OUT.h5` holds a completed
+result is written beside it as `OUT.partial.h5` and `OUT.partial.summary.yaml`. SIGINT, SIGTERM,
+SIGHUP, SIGUSR1 and SIGXCPU stop a run and write what was measured (exit 3). See
+[reliability.md](reliability.md).
 
 `gran check SCENE.yaml [--set ...]`: every check `gran run` makes (the contacts, what the engine can
 do, the drivers' and observables' cross-references, the initial placement), without running.
 
-`gran study STUDY.yaml [-o OUTDIR] [-j JOBS]`: runs a study (one scene swept over points, grids,
-zipped lists and replicas) several runs at a time, merges them into `OUTDIR/study.h5` with a summary
-table `study.csv` and power-law fits; a second invocation reuses every complete run. See
-[studies.md](studies.md).)md";
+`gran study STUDY.yaml [-o OUTDIR] [-j JOBS] [--reuse-any-version]`: runs a study (one scene swept
+over points, grids, zipped lists and replicas) several runs at a time, merges them into
+`OUTDIR/study.h5` with a summary table `study.csv` and power-law fits; a second invocation reuses
+every complete run made by the same code (`gran --version`); results of other code are rerun
+unless `--reuse-any-version` is given (each reused one is named). See [studies.md](studies.md).)md";
 
 int cmd_list(const std::string& what, bool markdown) {
     try {
@@ -111,7 +144,8 @@ void plot_tradeoff(const gran::StudyReport& rep) {
         spdlog::warn("the trade-off plot failed: {}", cmd);
 }
 
-int cmd_study(const std::string& file, const std::string& out, int jobs, bool quiet) {
+int cmd_study(const std::string& file, const std::string& out, int jobs, bool quiet,
+              bool reuse_any_version = false) {
     try {
         const gran::Study st = gran::load_study(file);
         gran::StudyOptions opt;
@@ -119,14 +153,9 @@ int cmd_study(const std::string& file, const std::string& out, int jobs, bool qu
         opt.jobs = jobs;
         opt.gran_binary = std::filesystem::read_symlink("/proc/self/exe").string();
         opt.progress = !quiet;
+        opt.reuse_any_version = reuse_any_version;
         opt.interrupt = &g_interrupt;
-        // No SA_RESTART: the signal interrupts the wait for runs, so they are stopped at once.
-        struct sigaction sa {};
-        sa.sa_handler = on_signal;
-        sigemptyset(&sa.sa_mask);
-        sa.sa_flags = 0;
-        sigaction(SIGINT, &sa, nullptr);
-        sigaction(SIGTERM, &sa, nullptr);
+        stop_on_signals();
         const gran::StudyReport rep = gran::run_study(st, opt);
         std::cout << fmt::format(
             "{} ran, {} reused, {} failed{}; at most {} at a time\nresult: {}\ntable: {}\n",
@@ -202,6 +231,7 @@ struct CommandLine {
     // study (jobs: tradeoff too)
     std::string study_file, study_out;
     int jobs = 0;
+    bool reuse_any_version = false;
     // tradeoff
     gran::TradeoffRequest treq;
     std::string tout;
@@ -238,6 +268,9 @@ CLI::App* add_study(CLI::App& app, CommandLine& cl) {
     study->add_option("-o,--output", cl.study_out, "result folder (default results/<study>)");
     study->add_option("-j,--jobs", cl.jobs,
                       "runs at a time (default: the study's `jobs`, else all cores)");
+    study->add_flag("--reuse-any-version", cl.reuse_any_version,
+                    "reuse complete results made by another code version (each is named); by "
+                    "default they are rerun");
     study->fallthrough();
     return study;
 }
@@ -289,8 +322,7 @@ int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
                                      scene.packing_fraction);
             return 0;
         }
-        std::signal(SIGINT, on_signal);
-        std::signal(SIGTERM, on_signal);
+        stop_on_signals();
         gran::RunOptions opt;
         opt.output = cl.output.empty() ? default_output(cl.scene_file) : cl.output;
         opt.progress = !cl.quiet;
@@ -328,7 +360,9 @@ int main(int argc, char** argv) {
         "gran: event-driven simulations of granular gases (inelastic hard disks and spheres)"};
     app.require_subcommand(1);
     CommandLine cl;
+    app.set_version_flag("--version", version_text);
     app.add_option("--log-level", cl.log_level, "trace, debug, info, warn, error, off")
+        ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}))
         ->capture_default_str();
     app.add_flag("-q,--quiet", cl.quiet, "no progress line and only warnings");
     add_run(app, cl);
@@ -337,12 +371,19 @@ int main(int argc, char** argv) {
     const CLI::App* tradeoff = add_tradeoff(app, cl);
     const CLI::App* list = add_list(app, cl);
 
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // --help and --version exit 0; every command-line error exits 2, like an invalid scene
+        // (CLI11's own codes, 106 or 109, are not what the README documents).
+        return app.exit(e) == 0 ? 0 : 2;
+    }
     spdlog::set_level(cl.quiet ? spdlog::level::warn : spdlog::level::from_str(cl.log_level));
     spdlog::set_pattern("[%H:%M:%S] [%^%l%$] %v");
 
     if (list->parsed()) return cmd_list(cl.what, cl.markdown);
-    if (study->parsed()) return cmd_study(cl.study_file, cl.study_out, cl.jobs, cl.quiet);
+    if (study->parsed())
+        return cmd_study(cl.study_file, cl.study_out, cl.jobs, cl.quiet, cl.reuse_any_version);
     if (tradeoff->parsed())
         return cmd_tradeoff(cl.treq, cl.knob_ladders, cl.analytic, cl.tout, cl.jobs, cl.quiet,
                             cl.dry_run);

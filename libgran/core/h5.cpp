@@ -54,6 +54,13 @@ namespace {
 
 using detail::Handle;
 
+// HDF5's exit handler closes the files still open at exit; after a failed close (a full disk)
+// it crashes there (SIGSEGV in H5F__close_cb, HDF5 1.10), turning a reported error into exit 139.
+// Every file this program writes is closed explicitly, and one still open at exit is the .part of
+// a failed run, so the handler is not needed. H5dont_atexit must precede every other HDF5 call:
+// a static initialiser of this file runs before main.
+const bool hdf5_without_exit_handler = H5dont_atexit() >= 0;
+
 // HDF5 prints its whole error stack to stderr on every failure, including expected ones such as
 // opening a missing file; we report failures as exceptions instead. The setting is per thread in
 // this thread-safe build, so it is applied once per thread on the ways into a file.
@@ -73,6 +80,15 @@ std::string hdf5_reason() {
             return 0;
         },
         &reason);
+    // A failed write describes itself at length ("file write failed: time = ...\n, filename =
+    // ..., errno = 28, error message = 'No space left on device', buf = ..."): the operating
+    // system's message is the cause a user can act on.
+    const std::string key = "error message = '";
+    if (const auto at = reason.find(key); at != std::string::npos) {
+        const auto end = reason.find('\'', at + key.size());
+        if (end != std::string::npos) return reason.substr(at + key.size(), end - at - key.size());
+    }
+    std::replace(reason.begin(), reason.end(), '\n', ' ');
     return reason;
 }
 
@@ -268,6 +284,18 @@ std::string read_one_string(hid_t file_type, hid_t space, const std::string& whe
 
 }  // namespace
 
+std::string name_problem(const std::string& name) {
+    if (name.empty()) return "an empty name";
+    if (name == "." || name == "..") return "'" + name + "' is reserved";
+    if (name.find('/') != std::string::npos)
+        return "'/' separates groups in the result file; use another character such as '_'";
+    for (const char c : name) {
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            return "a control character (tab, newline, ...) is not allowed";
+    }
+    return "";
+}
+
 // ---- File -------------------------------------------------------------------------------------
 
 File File::create(const std::string& path) {
@@ -280,6 +308,12 @@ File File::open_read(const std::string& path) {
     silence_hdf5_errors();
     const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     return File(own(id, "open file for reading", "'" + path + "'"), path);
+}
+
+File File::open_write(const std::string& path) {
+    silence_hdf5_errors();
+    const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    return File(own(id, "open file for writing", "'" + path + "'"), path);
 }
 
 Group File::root() const {

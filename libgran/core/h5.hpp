@@ -51,10 +51,16 @@ class Handle {
 class Group;
 class Appendable;
 
+// Why `name` cannot be one component of an HDF5 path (a '/' would nest groups, "." is the group
+// itself, control characters do not survive every tool), or "" when it can. Names the user gives
+// (species, drivers, observables) become result groups and are checked with this at load.
+std::string name_problem(const std::string& name);
+
 class File {
   public:
-    static File create(const std::string& path);     // truncates an existing file
-    static File open_read(const std::string& path);  // read-only
+    static File create(const std::string& path);      // truncates an existing file
+    static File open_read(const std::string& path);   // read-only
+    static File open_write(const std::string& path);  // read and write an existing file
 
     File(File&&) noexcept = default;
     File& operator=(File&&) noexcept = default;
@@ -83,6 +89,7 @@ class Group {
   public:
     Group group(const std::string& path);  // create or open
     bool exists(const std::string& path) const;
+    const std::string& path() const { return path_; }  // absolute, e.g. "/observables/t"
 
     // Datasets. Empty dims => 1D of data.size(); otherwise product(dims) must equal data.size().
     // Writing an existing name replaces it, so results can be rewritten.

@@ -3,6 +3,8 @@
 #include <cstdlib>
 #include <span>
 
+#include "libgran/core/build_info.hpp"
+
 namespace gran {
 
 void write_provenance(ResultGroup root, const Scene& sc,
@@ -15,7 +17,17 @@ void write_provenance(ResultGroup root, const Scene& sc,
     h5md.group("author").attr("name", user ? user : "gran user");
     ResultGroup creator = h5md.group("creator");
     creator.attr("name", "gran");
-    creator.attr("version", GRAN_VERSION);
+    const BuildInfo& b = build_info();
+    creator.attr("version", b.code_id());
+
+    // What built this result: `gran study` reuses it only for the same code_id.
+    ResultGroup code = file.group("provenance");
+    code.attr("code_id", b.code_id());
+    code.attr("version", b.version);
+    code.attr("commit", b.commit);
+    code.attr("dirty", std::int64_t(b.dirty));
+    code.attr("build_type", b.build_type);
+    code.attr("compiler", b.compiler);
 
     ResultGroup par = file.group("parameters");
     YAML::Emitter em;
@@ -50,6 +62,11 @@ void write_summary_header(YAML::Node& summary, const Scene& sc, const std::strin
                           const std::string& status, const std::string& error,
                           std::size_t particles) {
     summary["scene"] = sc.file;
+    const BuildInfo& b = build_info();
+    summary["code"]["version"] = b.version;
+    summary["code"]["commit"] = b.commit;
+    summary["code"]["dirty"] = b.dirty;
+    summary["code"]["build_type"] = b.build_type;
     if (!sc.title.empty()) summary["title"] = sc.title;
     summary["result"] = output;
     summary["status"] = status;

@@ -20,6 +20,7 @@
 #include <concepts>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,8 +36,13 @@ concept Count = std::integral<T> && !std::same_as<T, bool>;
 
 class ResultGroup {
   public:
-    ResultGroup(h5::Group file, YAML::Node summary, bool summarise = true)
-        : file_(std::move(file)), summary_(std::move(summary)), summarise_(summarise) {}
+    // `unreliable` (optional) collects the paths of estimates whose value or error is not finite.
+    ResultGroup(h5::Group file, YAML::Node summary, bool summarise = true,
+                std::vector<std::string>* unreliable = nullptr)
+        : file_(std::move(file)),
+          summary_(std::move(summary)),
+          summarise_(summarise),
+          unreliable_(unreliable) {}
 
     // Sub-group `name` in HDF5 and in the summary.
     ResultGroup group(const std::string& name);
@@ -44,7 +50,7 @@ class ResultGroup {
     // temperatures' species groups, summarised under `species`).
     ResultGroup group(const std::string& name, const std::vector<std::string>& summary_keys);
     // This group, writing to the HDF5 file only.
-    ResultGroup file_only() const { return ResultGroup(file_, summary_, false); }
+    ResultGroup file_only() const { return ResultGroup(file_, summary_, false, unreliable_); }
 
     // ---- Quantities: HDF5 and summary -------------------------------------------------------
     void estimate(const std::string& name, const Estimate& e, const std::string& unit);
@@ -99,11 +105,26 @@ class ResultGroup {
     h5::Group file_;
     YAML::Node summary_;  // a node of the summary (yaml-cpp adds it to its parent when written)
     bool summarise_;
+    std::vector<std::string>* unreliable_;
 };
+
+// An output that cannot or must not be written (full disk, a directory, the scene file itself):
+// the message names the path and the cause; `gran run` exits 1.
+class OutputError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// Refuses (OutputError), before anything runs, a result path the run could not or must not
+// write: not ending in .h5/.hdf5, a directory, one of `inputs` (the scene file), or in a folder
+// that cannot be created or written. Creates the folder.
+void check_output_path(const std::string& output, const std::vector<std::string>& inputs);
 
 // The result of one run: OUT.h5.part is created with the sink and written to while the run goes
 // on; finish() closes it, renames it to OUT.h5 and writes OUT.summary.yaml. A run that fails
-// before finish() leaves an earlier OUT.h5 and its summary as they were.
+// before finish() leaves an earlier OUT.h5 and its summary as they were. A run that did not
+// complete (interrupted, stopped) while OUT.h5 holds a completed result goes beside it, to
+// OUT.partial.h5 and OUT.partial.summary.yaml.
 class ResultSink {
   public:
     // Creates OUT's folder and OUT.h5.part (h5::Error naming the path when it cannot).
@@ -116,18 +137,27 @@ class ResultSink {
     YAML::Node& summary() { return summary_; }
     const std::string& output() const { return output_; }
     const std::string& part() const { return part_; }
+    // Estimates written so far whose value or error is not finite (paths in the result file). A
+    // run with any has status `unreliable` instead of `completed` (finish()).
+    const std::vector<std::string>& unreliable() const { return unreliable_; }
+    // Where the result and its summary went (after finish()).
+    const std::string& written() const { return written_; }
     const std::string& summary_file() const { return summary_file_; }
     // Every group and series obtained from root() must be gone: the file is complete only once
-    // all are closed (std::logic_error otherwise).
-    void finish();
+    // all are closed (std::logic_error otherwise). Each write, close and rename is checked
+    // (h5::Error or OutputError naming the path and the cause).
+    void finish(bool completed = true);
 
   private:
-    std::string output_, part_, summary_file_;
+    std::string output_, part_, summary_file_, written_;
     h5::File file_;
     YAML::Node summary_;
+    std::vector<std::string> unreliable_;
 };
 
 // OUT.summary.yaml beside OUT.h5.
 std::string summary_path_for(const std::string& output);
+// OUT.partial.h5: where a run that did not complete goes when OUT.h5 is a completed result.
+std::string partial_path_for(const std::string& output);
 
 }  // namespace gran

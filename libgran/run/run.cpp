@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <ctime>
 
@@ -80,7 +81,7 @@ class ScheduleLoop {
         }
         const std::size_t nsamples = samples_in(length);
         for (std::size_t k = 1; k <= nsamples; ++k) {
-            if (!advance_to(t0, c0, k)) return;
+            if (!advance_to(t0, c0, k, measuring)) return;
             sample(measuring);
             const double done =
                 (measuring ? s.equilibration : 0.0) + length * double(k) / double(nsamples);
@@ -91,7 +92,7 @@ class ScheduleLoop {
 
     // To the k-th sample of a phase that started at time t0 with c0 collisions; false when the
     // run stops there (interrupt, no more events, watchdog).
-    bool advance_to(double t0, std::uint64_t c0, std::size_t k) {
+    bool advance_to(double t0, std::uint64_t c0, std::size_t k, bool measuring) {
         const auto& s = sc_.schedule;
         const bool by_time = s.unit == ScheduleUnit::Time;
         const double at = double(k) * s.sample_interval;  // time, or collisions per particle
@@ -99,7 +100,7 @@ class ScheduleLoop {
         const double t_target = by_time ? t0 + at : kInf;
         const std::uint64_t c_target =
             by_time ? UINT64_MAX : c0 + static_cast<std::uint64_t>(std::llround(at * n / 2.0));
-        const Advance adv = runner_.advance(t_target, c_target, UINT64_MAX, opt_.interrupt);
+        const Advance adv = advance_in_chunks(t_target, c_target, t0, c0, measuring);
         out_.interrupted = adv == Advance::Interrupted;
         out_.stalled = adv == Advance::Stalled || adv == Advance::Watchdog;
         if (adv == Advance::Watchdog) out_.watchdog_stop = runner_.failure();
@@ -110,6 +111,34 @@ class ScheduleLoop {
             out_.stalled = !out_.watchdog_stop.empty();
         }
         return !out_.stalled;
+    }
+
+    // Advances to the target in chunks of engine work of about a quarter of a second, so that the
+    // progress line moves from the start and within long intervals between samples. The engines
+    // stop between two events or steps, so the chunks leave the trajectory bit for bit unchanged.
+    Advance advance_in_chunks(double t_target, std::uint64_t c_target, double t0, std::uint64_t c0,
+                              bool measuring) {
+        const auto& s = sc_.schedule;
+        const double length = measuring ? s.measurement : s.equilibration;
+        const double before = measuring ? s.equilibration : 0.0;
+        const double n = double(runner_.view().particles().size());
+        while (true) {
+            const auto start = std::chrono::steady_clock::now();
+            const Advance adv =
+                runner_.advance(t_target, c_target, runner_.work() + chunk_, opt_.interrupt);
+            const bool reached = runner_.now() >= t_target || runner_.collisions() >= c_target;
+            if (adv != Advance::Reached || reached) return adv;
+            const double secs =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double grow = secs > 0 ? std::clamp(0.25 / secs, 0.25, 4.0) : 4.0;
+            chunk_ = std::max<std::uint64_t>(16, std::uint64_t(double(chunk_) * grow));
+            const double done = s.unit == ScheduleUnit::Time
+                                    ? (runner_.now() - t0)
+                                    : 2.0 * double(runner_.collisions() - c0) / std::max(n, 1.0);
+            progress_.update(measuring ? "measurement" : "equilibration",
+                             (before + std::min(done, length)) / (s.equilibration + s.measurement),
+                             runner_.work());
+        }
     }
 
     void sample(bool measuring) {
@@ -133,6 +162,7 @@ class ScheduleLoop {
     FrameWriter frames_;
     Progress progress_;
     ScheduleOutcome out_;
+    std::uint64_t chunk_ = 1024;  // engine work per advance call (advance_in_chunks)
     std::vector<double> positions_, velocities_;  // one frame, reused
     std::vector<std::int64_t> species_;
 };
@@ -190,12 +220,17 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     totals.watchdog_stop = out.watchdog_stop;
     write_summary_header(sink.summary(), sc, opt.output, out.status(), out.watchdog_stop, n);
     write_results<D>(sink.root(), sc, runner, st.drivers, st.observables, out, totals);
-    sink.finish();
+    for (const auto& q : sink.unreliable())
+        spdlog::warn("{}: the value or its error bar is not finite; status: unreliable", q);
+    sink.finish(totals.completed);
+    if (sink.written() != opt.output)
+        spdlog::warn("the completed result {} is kept; this run's data is in {}", opt.output,
+                     sink.written());
 
     RunReport rep;
     rep.completed = totals.completed;
     rep.error = out.watchdog_stop;
-    rep.output = opt.output;
+    rep.output = sink.written();
     rep.summary_file = sink.summary_file();
     rep.summary = sink.summary();
     return rep;
@@ -213,6 +248,8 @@ void check_scene(const Scene& scene) {
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
     const double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;  // the cost includes the set-up
+    // Before anything runs: a run must not be wasted on a path it cannot write.
+    check_output_path(options.output, {scene.file});
     Simulation sim(scene, options.interrupt);
     return scene.dimension == 2 ? run_with<2>(sim.scene(), options, sim, cpu0)
                                 : run_with<3>(sim.scene(), options, sim, cpu0);

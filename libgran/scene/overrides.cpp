@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "libgran/core/yaml_file.hpp"
 #include "libgran/scene/scene.hpp"
 
 namespace gran {
@@ -75,15 +76,7 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-    std::ifstream in(path);
-    if (!in) throw SceneError(fmt::format("{}: cannot open scene file", path));
-    YAML::Node root;
-    try {
-        root = YAML::LoadFile(path);
-    } catch (const YAML::ParserException& e) {
-        throw SceneError(fmt::format("{}:{}:{}: YAML syntax error: {}", path, e.mark.line + 1,
-                                     e.mark.column + 1, e.msg));
-    }
+    YAML::Node root = load_yaml_file(path, "scene file");
     std::vector<std::pair<std::string, std::string>> paths;
     for (const auto& o : overrides) {
         apply_override(root, o);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "libgran/core/h5.hpp"
 #include "libgran/plugins/engine.hpp"
 #include "libgran/plugins/placement.hpp"
 #include "libgran/scene/interactions.hpp"
@@ -196,6 +197,8 @@ std::vector<PluginEntry> read_plugins(const YAML::Node& list, const Where& w, co
         s.push_back(optional(text("name", "", "name of the result group (default: the type)")));
         Params p = read_params(e, s, wk, {"type"});
         PluginEntry entry{type, p.has("name") ? p.str("name") : type, p};
+        if (const std::string why = h5::name_problem(entry.name); !why.empty())
+            p.fail("name", "'" + entry.name + "' cannot name a result group: " + why);
         for (const auto& other : out) {
             if (other.name == entry.name) {
                 p.fail("type", fmt::format("two entries named '{}': give one a distinct `name`",

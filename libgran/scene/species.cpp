@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libgran/core/h5.hpp"
+
 namespace gran {
 
 Schema species_schema() {
@@ -38,6 +40,8 @@ SpeciesTable read_species(const YAML::Node& species, std::int64_t total_particle
         Species s;
         s.name = p.str("name");
         if (s.name.empty()) p.fail("name", "expected a non-empty species name");
+        if (const std::string why = h5::name_problem(s.name); !why.empty())
+            p.fail("name", "species name '" + s.name + "' cannot name a result group: " + why);
         if (table.index_of(s.name) != table.size())
             p.fail("name", "species name '" + s.name + "' is used twice");
         s.mass = p.real("mass");

@@ -70,6 +70,9 @@ struct StudyOptions {
     std::string output_dir;   // overrides Study::output_dir when not empty
     int jobs = 0;             // overrides Study::jobs when > 0
     std::string gran_binary;  // the program that runs one scene (`gran run`)
+    // Reuse complete results made by another code version (a warning names each); by default
+    // they are rerun.
+    bool reuse_any_version = false;
     bool progress = true;
     const std::atomic<bool>* interrupt = nullptr;
 };

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "libgran/core/scene_error.hpp"
+#include "libgran/core/yaml_file.hpp"
 #include "libgran/scene/scene.hpp"
 #include "libgran/study/study.hpp"
 
@@ -185,14 +186,7 @@ std::string resolved_scene_text(const Study& st, const StudyRun& run) {
 }
 
 YAML::Node read_study_yaml(const std::string& path) {
-    try {
-        return YAML::LoadFile(path);
-    } catch (const YAML::BadFile&) {
-        throw SceneError(fmt::format("{}: cannot open the study file", path));
-    } catch (const YAML::ParserException& e) {
-        throw SceneError(fmt::format("{}:{}:{}: not valid YAML: {}", path, e.mark.line + 1,
-                                     e.mark.column + 1, e.msg));
-    }
+    return load_yaml_file(path, "study file");
 }
 
 std::string file_text(const std::string& path) {

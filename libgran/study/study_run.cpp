@@ -17,6 +17,7 @@
 #include <map>
 #include <thread>
 
+#include "libgran/core/build_info.hpp"
 #include "libgran/core/h5.hpp"
 #include "libgran/study/study.hpp"
 #include "libgran/study/study_merge.hpp"
@@ -31,14 +32,29 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// A result that completed and came from exactly this resolved scene needs no new run.
-bool reusable(const std::string& file, const std::string& resolved) {
+// A result that completed, came from exactly this resolved scene and was made by this code
+// (provenance code_id) needs no new run; `any_version` also reuses one made by other code and says
+// so. Results older than provenance records count as other code.
+bool reusable(const std::string& file, const std::string& resolved, bool any_version) {
     if (!fs::exists(file)) return false;
     try {
         h5::File f = h5::File::open_read(file);
-        const h5::Group r = f.root();
-        return r.read_int64s("performance/completed").at(0) == 1 &&
-               r.read_string("parameters/scene") == resolved;
+        h5::Group r = f.root();
+        if (r.read_int64s("performance/completed").at(0) != 1 ||
+            r.read_string("parameters/scene") != resolved) {
+            return false;
+        }
+        const std::string mine = build_info().code_id();
+        const std::string theirs = r.exists("provenance")
+                                       ? r.group("provenance").read_attr_string("code_id")
+                                       : "unrecorded (before provenance)";
+        if (theirs == mine) return true;
+        if (any_version) {
+            spdlog::warn("{}: reusing a result made by code {} (this is {})", file, theirs, mine);
+            return true;
+        }
+        spdlog::info("{}: made by code {}, rerun with this code ({})", file, theirs, mine);
+        return false;
     } catch (const std::exception&) {
         return false;
     }
@@ -70,11 +86,12 @@ pid_t spawn_run(const std::string& binary, const std::string& scene, const std::
 }
 
 // The runs to do; the reusable ones are marked in `have` and counted in rep.reused.
-std::vector<std::size_t> runs_to_do(const Study& st, const RunFiles& files, std::vector<bool>& have,
-                                    StudyReport& rep) {
+std::vector<std::size_t> runs_to_do(const Study& st, const RunFiles& files, bool any_version,
+                                    std::vector<bool>& have, StudyReport& rep) {
     std::vector<std::size_t> todo;
     for (std::size_t i = 0; i < st.runs.size(); ++i) {
-        if (reusable(files.result[i], st.runs[i].resolved_scene) && fs::exists(files.summary[i])) {
+        if (reusable(files.result[i], st.runs[i].resolved_scene, any_version) &&
+            fs::exists(files.summary[i])) {
             have[i] = true;
             ++rep.reused;
         } else {
@@ -197,7 +214,7 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
     fs::create_directories(fs::path(outdir) / "logs");
     const RunFiles files = run_files(st, outdir);
     std::vector<bool> have(st.runs.size(), false);
-    std::vector<std::size_t> todo = runs_to_do(st, files, have, rep);
+    std::vector<std::size_t> todo = runs_to_do(st, files, opt.reuse_any_version, have, rep);
     spdlog::info("study {}: {} runs, {} already complete, {} to run on {} cores; results in {}",
                  st.file, st.runs.size(), rep.reused, todo.size(), jobs, outdir);
     const Clock::time_point t0 = Clock::now();

@@ -214,11 +214,14 @@ TEST_F(Run, SameSceneAndSeedGiveIdenticalResults) {
     EXPECT_TRUE(any_difference_with_other_seed) << "seeds 7 and 8 gave identical observables";
 }
 
-// Starts a long run of the demo (with `extra` overrides), sends SIGTERM once it has been running
-// for 1.5 s and checks that it stops promptly with exit code 3 and a valid partial result.
-void expect_sigterm_leaves_valid_result(const fs::path& dir,
-                                        const std::vector<std::string>& extra) {
+// Starts a long run of the demo (with `extra` overrides), sends `sig` once it has been running
+// for 1.5 s and checks that it stops promptly with exit code 3 and a valid partial result, in
+// long.h5, or in long.partial.h5 beside it when long.h5 already holds a completed result.
+void expect_sigterm_leaves_valid_result(const fs::path& dir, const std::vector<std::string>& extra,
+                                        int sig = SIGTERM) {
     const std::string out = (dir / "long.h5").string();
+    const bool beside_completed = fs::exists(out);
+    const std::string partial = beside_completed ? (dir / "long.partial.h5").string() : out;
     const std::string log = (dir / "long.log").string();
     // Long enough never to finish within the test; the equilibration is short so that the
     // measurement (and sampling) is under way when the signal arrives.
@@ -244,7 +247,7 @@ void expect_sigterm_leaves_valid_result(const fs::path& dir,
     if (::waitpid(pid, &status, WNOHANG) != 0) {
         FAIL() << "gran ended before it was interrupted:\n" << read_text(log);
     }
-    ASSERT_EQ(::kill(pid, SIGTERM), 0);
+    ASSERT_EQ(::kill(pid, sig), 0);
 
     // It must stop promptly (it writes what it measured so far); do not hang the suite if not.
     pid_t done = 0;
@@ -262,9 +265,9 @@ void expect_sigterm_leaves_valid_result(const fs::path& dir,
                                    << read_text(log);
     EXPECT_EQ(WEXITSTATUS(status), 3) << read_text(log);
     EXPECT_FALSE(fs::exists(out + ".part"));
-    ASSERT_TRUE(fs::exists(out)) << read_text(log);
+    ASSERT_TRUE(fs::exists(partial)) << read_text(log);
 
-    auto file = gran::h5::File::open_read(out);
+    auto file = gran::h5::File::open_read(partial);
     const gran::h5::Group root = file.root();
     EXPECT_EQ(root.read_int64s("performance/interrupted"), std::vector<std::int64_t>{1});
     EXPECT_EQ(root.read_int64s("performance/completed"), std::vector<std::int64_t>{0});
@@ -289,6 +292,32 @@ TEST_F(Run, InterruptedBySigtermLeavesValidResult) {
 TEST_F(Run, InterruptedBySigtermEvenWithFrequentDriverKicks) {
     expect_sigterm_leaves_valid_result(
         dir_, {"--set", "drivers.0.interval=0.2", "--set", "run.sample_interval=0.5"});
+}
+
+// A closed terminal (SIGHUP), a batch system's warning (SIGUSR1) and the CPU-time limit (SIGXCPU)
+// end a run the way SIGTERM does, never by the default action that loses everything.
+TEST_F(Run, HangupUser1AndCpuLimitStopTheRunLikeSigterm) {
+    for (const int sig : {SIGHUP, SIGUSR1, SIGXCPU}) {
+        SCOPED_TRACE(strsignal(sig));
+        expect_sigterm_leaves_valid_result(dir_, {}, sig);
+        fs::remove(path("long.h5"));
+    }
+}
+
+// The docs promise that a run which did not complete never replaces a result: an interrupted
+// rerun writes long.partial.h5 and leaves the completed long.h5 byte for byte.
+TEST_F(Run, InterruptedRerunKeepsTheCompletedResultAndWritesBesideIt) {
+    const std::string out = path("long.h5");
+    const Outcome first = run_gran(concat({"-q", "run", kDemo, "-o", out}, kShortDemo));
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    const std::string before = read_text(out),
+                      summary_before = read_text(path("long.summary.yaml"));
+    expect_sigterm_leaves_valid_result(dir_, {});
+    EXPECT_EQ(read_text(out), before);
+    EXPECT_EQ(read_text(path("long.summary.yaml")), summary_before);
+    const YAML::Node partial = YAML::LoadFile(path("long.partial.summary.yaml"));
+    EXPECT_EQ(partial["status"].as<std::string>(), "interrupted");
+    EXPECT_EQ(partial["result"].as<std::string>(), path("long.partial.h5"));
 }
 
 TEST_F(Run, FailedRunDoesNotClobberExistingResult) {

@@ -39,6 +39,8 @@ const char* kDemContacts =
 
 BedState run_bed(const std::string& engine, const std::string& contacts, const std::string& driver,
                  const std::string& tag) {
+    // Ten samples: with fewer than eight the kinetic energy has no error bar and the status would
+    // be `unreliable` instead of `completed`.
     const std::string yaml = fmt::format(R"(
 dimension: 2
 seed: 1
@@ -51,7 +53,7 @@ engine: {}
 drivers: [{}]
 observables: [{{type: kinetic_energy}}]
 output: {{frames: 1}}
-run: {{unit: time, equilibration: 40, measurement: 5, sample_interval: 1,
+run: {{unit: time, equilibration: 40, measurement: 5, sample_interval: 0.5,
       watchdog: {{max_events_per_tc: 1000}}}}
 )",
                                          contacts, engine, driver);

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -181,6 +183,96 @@ TEST_F(ResultSinkTest, UnfinishedResultLeavesTheEarlierOneIntact) {
     EXPECT_EQ(h5::File::open_read(out).root().read_doubles("x").at(0), 1.0);
     EXPECT_EQ(YAML::LoadFile(summary_path_for(out))["x"].as<double>(), 1.0);
     EXPECT_EQ(h5::File::open_read(out + ".part").root().read_doubles("x").at(0), 2.0);
+}
+
+// A completed result as a run writes it: performance/completed and the summary's status.
+void write_result(const std::string& out, bool completed, double x) {
+    ResultSink sink(out);
+    sink.summary()["status"] = completed ? "completed" : "interrupted";
+    sink.root().group("performance").file_only().flag("completed", completed);
+    sink.root().value("x", x);
+    sink.finish(completed);
+}
+
+TEST_F(ResultSinkTest, RunThatDidNotCompleteGoesBesideACompletedResult) {
+    const std::string out = path("r.h5");
+    write_result(out, true, 1.0);
+    ResultSink sink(out);
+    sink.summary()["status"] = "interrupted";
+    sink.root().value("x", 2.0);
+    sink.finish(false);
+    EXPECT_EQ(sink.written(), path("r.partial.h5"));
+    EXPECT_EQ(sink.summary_file(), path("r.partial.summary.yaml"));
+    EXPECT_EQ(h5::File::open_read(out).root().read_doubles("x").at(0), 1.0);
+    EXPECT_EQ(YAML::LoadFile(summary_path_for(out))["x"].as<double>(), 1.0);
+    EXPECT_EQ(h5::File::open_read(path("r.partial.h5")).root().read_doubles("x").at(0), 2.0);
+    EXPECT_EQ(YAML::LoadFile(path("r.partial.summary.yaml"))["x"].as<double>(), 2.0);
+    EXPECT_FALSE(fs::exists(out + ".part"));
+}
+
+TEST_F(ResultSinkTest, RunThatDidNotCompleteReplacesAnEarlierIncompleteResult) {
+    const std::string out = path("r.h5");
+    write_result(out, false, 1.0);
+    write_result(out, false, 2.0);
+    EXPECT_EQ(h5::File::open_read(out).root().read_doubles("x").at(0), 2.0);
+    EXPECT_FALSE(fs::exists(path("r.partial.h5")));
+}
+
+TEST_F(ResultSinkTest, NonFiniteErrorBarMakesACompletedRunUnreliableAndNamesTheQuantity) {
+    const std::string out = path("r.h5");
+    {
+        ResultSink sink(out);
+        sink.summary()["status"] = "completed";
+        sink.root()
+            .group("observables")
+            .group("t")
+            .estimate("T", Estimate{1.0, std::numeric_limits<double>::infinity()}, "");
+        sink.root().estimate("fine", Estimate{1.0, 0.1}, "");
+        EXPECT_EQ(sink.unreliable(), std::vector<std::string>{"/observables/t/T"});
+        sink.finish();
+    }
+    const YAML::Node s = YAML::LoadFile(summary_path_for(out));
+    EXPECT_EQ(s["status"].as<std::string>(), "unreliable");
+    ASSERT_EQ(s["unreliable"].size(), 1u);
+    EXPECT_EQ(s["unreliable"][0].as<std::string>(), "/observables/t/T");
+}
+
+TEST_F(ResultSinkTest, FiniteErrorBarsKeepTheStatus) {
+    const std::string out = path("r.h5");
+    {
+        ResultSink sink(out);
+        sink.summary()["status"] = "completed";
+        sink.root().estimate("x", Estimate{1.0, 0.1}, "");
+        sink.finish();
+    }
+    EXPECT_EQ(YAML::LoadFile(summary_path_for(out))["status"].as<std::string>(), "completed");
+}
+
+std::string output_refusal(const std::string& out, const std::vector<std::string>& inputs = {}) {
+    try {
+        check_output_path(out, inputs);
+    } catch (const OutputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST_F(ResultSinkTest, OutputPathIsCheckedBeforeTheRun) {
+    EXPECT_EQ(output_refusal(path("new/folder/r.h5")), "");  // the folder is made
+    EXPECT_TRUE(fs::is_directory(path("new/folder")));
+    EXPECT_NE(output_refusal(dir_.string()).find("expected a result file name ending in .h5"),
+              std::string::npos);
+    fs::create_directories(path("d.h5"));
+    EXPECT_NE(output_refusal(path("d.h5")).find("is a directory"), std::string::npos);
+    std::ofstream(path("scene.yaml")) << "dimension: 2\n";
+    EXPECT_NE(output_refusal(path("scene.yaml"), {path("scene.yaml")}).find("ending in .h5"),
+              std::string::npos);
+    std::ofstream(path("in.h5")) << "x";
+    EXPECT_NE(output_refusal(path("in.h5"), {path("in.h5")}).find("is the input file"),
+              std::string::npos);
+    // /proc refuses new files even to root: the probe catches what access(2) would not.
+    EXPECT_NE(output_refusal("/proc/gran-test.h5").find("cannot write in the folder '/proc'"),
+              std::string::npos);
 }
 
 // ---- Through a run ----------------------------------------------------------------------------

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "libgran/core/build_info.hpp"
 #include "libgran/core/h5.hpp"
 #include "libgran/core/scene_error.hpp"
 #include "libgran/study/study.hpp"
@@ -145,6 +146,35 @@ TEST_F(Study, FourPointSweepRunsTwoAtATimeMergesAndResumeRecomputesNothing) {
     write("scene.yaml", std::string(kScene) + "seed: 9\n");
     const auto fourth = run_gran({"-q", "study", file, "-o", out});
     EXPECT_NE(fourth.output.find("4 ran, 0 reused"), std::string::npos) << fourth.output;
+}
+
+// Provenance: a result made by other code (another commit, uncommitted changes, or a build
+// older than provenance records) is not mixed into the study silently.
+TEST_F(Study, ResultOfAnotherCodeVersionIsRerunUnlessReuseIsAskedFor) {
+    const std::string file =
+        study_file("grid: {interactions.alpha: [0.8, 0.9]}\nset: {run.measurement: 50}\n");
+    const std::string out = path("out");
+    ASSERT_EQ(run_gran({"-q", "study", file, "-o", out}).exit_code, 0);
+    const std::string run = out + "/scene_alpha0.8.h5";
+    {
+        gran::h5::File f = gran::h5::File::open_read(run);
+        EXPECT_EQ(f.root().group("provenance").read_attr_string("code_id"),
+                  gran::build_info().code_id());
+    }
+    auto mark_as_other_code = [&] {
+        gran::h5::File f = gran::h5::File::open_write(run);
+        f.root().group("provenance").attr("code_id", "0.0.1+0123456789ab");
+    };
+    mark_as_other_code();
+    const auto reused = run_gran({"study", file, "-o", out, "--reuse-any-version"});
+    EXPECT_NE(reused.output.find("0 ran, 2 reused"), std::string::npos) << reused.output;
+    EXPECT_NE(reused.output.find("reusing a result made by code 0.0.1+0123456789ab"),
+              std::string::npos)
+        << reused.output;
+    const auto rerun = run_gran({"study", file, "-o", out});
+    EXPECT_NE(rerun.output.find("1 ran, 1 reused"), std::string::npos) << rerun.output;
+    EXPECT_NE(rerun.output.find("made by code 0.0.1+0123456789ab, rerun"), std::string::npos)
+        << rerun.output;
 }
 
 // Readers group runs by their point from the table itself, never by parsing run names.

@@ -1,0 +1,14 @@
+#pragma once
+// Reading a scene or study file: one YAML document from a readable regular file, or a SceneError
+// that says what is wrong with the path (missing, a directory, unreadable) or the text (syntax
+// error at line:column, a second document after '---').
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+namespace gran {
+
+// `what` names the file's role in messages ("scene file", "study file").
+YAML::Node load_yaml_file(const std::string& path, const std::string& what);
+
+}  // namespace gran
