@@ -301,7 +301,7 @@ def engines(directory, out):
             for point in study.points():
                 if point.startswith("engines_dem_kn"):
                     r = study.at(point, wv)
-                    kn.append(study.table.number(r, "engine.stiffness"))
+                    kn.append(study.table.number(r, "interactions.stiffness"))
                     a, ea = study.tbar(r, d)
                     b, eb = study.tbar(ref, d)
                     v.append((a / b, a / b * np.hypot(ea / a, eb / b)))
