@@ -44,12 +44,7 @@ std::vector<std::string> concat(std::vector<std::string> a, const std::vector<st
     return a;
 }
 
-std::string read_text(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using gran::testing::read_text;
 
 // A fresh directory per test, named after the process and the test.
 class CliTest : public gran::testing::TempDirTest {

@@ -35,12 +35,7 @@ std::vector<std::string> with_short(std::vector<std::string> args) {
     return args;
 }
 
-std::string read_text(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using gran::testing::read_text;
 
 class CliSafety : public gran::testing::TempDirTest {
   protected:

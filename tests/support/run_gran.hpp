@@ -5,12 +5,23 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 namespace gran::testing {
 
 inline const std::string kGran = GRAN_BINARY;
+
+// The whole content of a file (empty if it cannot be read), to compare results byte for byte.
+inline std::string read_text(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
 
 inline std::string shell_quote(const std::string& s) {
     std::string q = "'";
