@@ -8,6 +8,7 @@ template <int D>
 class FreeCooling final : public Driver<D> {
   public:
     FreeCooling(const Params&, const SceneInfo&) {}
+    void checkpoint(StateArchive& ar) override { ar.section("free cooling"); }
 };
 
 const bool registered = register_plugin<Driver, FreeCooling>(

@@ -35,7 +35,22 @@ class StochasticThermostat final : public Driver<D> {
           equal_force_(p.str("noise") == "equal_force_variance"),
           remove_drift_(p.boolean("remove_drift")),
           next_(interval_),
-          rng_(make_rng(info.seed + 1000003ull * info.index, Stream::Driver)) {}
+          rng_(make_rng(info.seed + 1000003ull * info.index, Stream::Driver)) {
+        // Kicks touch every particle and reschedule every event: an interval many orders below
+        // the mean free time makes a run that cannot finish (1e-300 does not even advance the
+        // time), refused here rather than left to run.
+        const double mean_free_time = 8.0 * default_interval(info);
+        if (p.has("interval") && interval_ < kMinIntervalOverMeanFreeTime * mean_free_time) {
+            p.fail("interval",
+                   fmt::format("{:.3g} is below {:.0e} of the mean free time at the initial "
+                               "temperature ({:.3g}): over {:.0e} kicks, each touching every "
+                               "particle, per collision; use an interval well below the mean free "
+                               "time but not this far (default: {:.3g})",
+                               interval_, kMinIntervalOverMeanFreeTime, mean_free_time,
+                               1 / kMinIntervalOverMeanFreeTime, mean_free_time / 8));
+        }
+    }
+    static constexpr double kMinIntervalOverMeanFreeTime = 1e-6;
 
     double next_kick() const override { return next_; }
 
@@ -63,6 +78,14 @@ class StochasticThermostat final : public Driver<D> {
         injected_ += de;
         ++count_;
         next_ += interval_;
+    }
+
+    void checkpoint(StateArchive& ar) override {
+        ar.section("stochastic_thermostat");
+        ar.io(next_);
+        ar.io(rng_);
+        ar.io(injected_);
+        ar.io(count_);
     }
 
     void write(ResultGroup& g) const override {

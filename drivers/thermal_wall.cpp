@@ -22,6 +22,11 @@ class ThermalWall final : public WallDriver<D>, private WallReflection<D> {
         this->replace_contact(this);
     }
 
+    void checkpoint(StateArchive& ar) override {
+        WallDriver<D>::checkpoint(ar);
+        ar.io(rng_);
+    }
+
   private:
     void reflect(Vec<D>& v, int axis, double inward, double /*u: a static wall*/,
                  double mass) override {

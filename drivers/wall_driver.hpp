@@ -79,6 +79,9 @@ class WallDriver : public Driver<D> {
         return w;
     }
     void observe(const EngineView<D>& view) override { view_ = &view; }
+    // Static, vibrating and sawtooth walls have no state of their own (motions are functions of
+    // time; hits and impulses are the engine's).
+    void checkpoint(StateArchive& ar) override { ar.section("wall driver " + partner_); }
 
     void write(ResultGroup& g) const override {
         if (!view_) return;

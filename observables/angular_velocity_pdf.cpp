@@ -100,10 +100,22 @@ class AngularVelocityPdf final : public Observable<D> {
         out.attr("blocks", static_cast<std::int64_t>(nblocks_));
     }
 
+    void checkpoint(StateArchive& ar) override {
+        ar.section("angular_velocity_pdf");
+        ar.io(samples_);
+        ar.io(per_);
+    }
+
   private:
     struct PerSpecies {
         std::array<BlockedHistogram, kComponents> scaled;
         Series c2, c4;
+
+        void checkpoint(StateArchive& ar) {
+            ar.io(scaled);
+            ar.io(c2);
+            ar.io(c4);
+        }
     };
     const SpeciesTable& table_;
     bool rotating_ = false;  // the grains carry angular velocities

@@ -56,6 +56,12 @@ class BarycentricHeight final : public Observable<D> {
         }
     }
 
+    void checkpoint(StateArchive& ar) override {
+        ar.section("barycentric_height");
+        ar.io(base_);
+        ar.io(h_);
+    }
+
   private:
     const SpeciesTable& table_;
     double period_;

@@ -2,11 +2,14 @@
 // A histogram accumulated in consecutive blocks of the measurement, so each bin's density has an
 // error bar (standard error of the block densities). Shared by the velocity-distribution
 // observables.
+#include <boost/core/nvp.hpp>
 #include <boost/histogram.hpp>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "libgran/core/state_archive.hpp"
 #include "libgran/run/result_sink.hpp"
 
 namespace gran {
@@ -14,9 +17,64 @@ namespace gran {
 using Histogram =
     decltype(boost::histogram::make_histogram(boost::histogram::axis::regular<>(1, 0.0, 1.0)));
 
+// Checkpoints (libgran/core/state_archive.hpp) of a one-axis histogram's counts: every bin,
+// underflow and overflow included, as doubles (exact: unweighted counts are integers). The axis is
+// not archived: loading needs the histogram already built with the saved axis.
+template <class H>
+void checkpoint_counts(StateArchive& ar, H& h) {
+    const int n = static_cast<int>(h.axis().size());
+    std::vector<double> counts;
+    if (!ar.loading()) {
+        for (int i = -1; i <= n; ++i) counts.push_back(h.at(i));
+    }
+    ar.io(counts);
+    if (!ar.loading()) return;
+    if (counts.size() != std::size_t(n) + 2)
+        throw StateMismatch("checkpoint state: a histogram with another number of bins");
+    for (int i = -1; i <= n; ++i) {
+        const double c = counts[std::size_t(i + 1)];
+        // Integral counts go back as integers: assigning a double would turn the storage into
+        // doubles (same outputs, but not the same histogram).
+        if (c >= 0 && c < 0x1p53 && c == std::floor(c))
+            h.at(i) = static_cast<std::uint64_t>(c);
+        else
+            h.at(i) = c;
+    }
+}
+
+// Routes the `ar & make_nvp(...)` calls of a Boost.Histogram axis's serialize() to a
+// StateArchive: an axis is archived as stored (start and width), not recomputed from its edges,
+// which could differ in the last bit.
+struct AxisArchive {
+    StateArchive& ar;
+
+    template <class T>
+    AxisArchive& operator&(const boost::serialization::nvp<T>& x) {
+        if constexpr (requires { x.value().serialize(*this, 0u); })
+            x.value().serialize(*this, 0u);
+        else
+            ar.io(x.value());
+        return *this;
+    }
+};
+
 struct BlockedHistogram {
     std::vector<Histogram> blocks;
     std::vector<double> entries;  // samples in range+out of range per block
+
+    // Blocks with their axes (some observables size the axis at the first sample) and counts.
+    // One block per entry: entries is archived first and gives the number of blocks.
+    void checkpoint(StateArchive& ar) {
+        ar.io(entries);
+        if (ar.loading()) blocks.resize(entries.size());
+        for (auto& h : blocks) {
+            auto axis = h.axis();
+            AxisArchive a{ar};
+            axis.serialize(a, 0u);
+            if (ar.loading()) h = boost::histogram::make_histogram(axis);
+            checkpoint_counts(ar, h);
+        }
+    }
 
     // Writes <prefix>edges (in `edges_unit`), <prefix>density, <prefix>error; edges and density
     // may be rescaled (a change of variable x -> x / scale) for rescaled distributions.

@@ -67,6 +67,21 @@ class CollisionStatistics final : public Observable<D> {
         }
     }
 
+    void checkpoint(StateArchive& ar) override {
+        ar.section("collision_statistics");
+        ar.io(started_);
+        ar.io(last_time_);
+        ar.io(last_total_);
+        ar.io(total_);
+        ar.io(walls_);
+        ar.io(last_pairs_);
+        ar.io(totals_pairs_);
+        ar.io(n_);
+        ar.io(dt_);
+        ar.io(dtotal_);
+        ar.io(pair_increments_);
+    }
+
   private:
     const SpeciesTable& table_;
     bool started_ = false;

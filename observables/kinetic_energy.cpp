@@ -32,6 +32,15 @@ class KineticEnergy final : public Observable<D> {
             out.estimate("mean_energy_per_particle", measured_.estimate(), "energy");
     }
 
+    void checkpoint(StateArchive& ar) override {
+        ar.section("kinetic_energy");
+        ar.io(time_);
+        ar.io(energy_);
+        ar.io(cpp_);
+        ar.io(phase_);
+        ar.io(measured_);
+    }
+
   private:
     const SpeciesTable& table_;
     std::vector<double> time_, energy_, cpp_;

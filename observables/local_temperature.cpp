@@ -138,6 +138,16 @@ class LocalTemperature final : public Observable<D> {
         write_total(g, jack, bed, scale);
     }
 
+    void checkpoint(StateArchive& ar) override {
+        ar.section("local_temperature");
+        ar.io(samples_);
+        ar.io(base_);
+        ar.io(sums_);
+        ar.io(plain_);
+        ar.io(plain_slab_);
+        ar.io(samples_in_block_);
+    }
+
   private:
     // Sums over a set of blocks, reduced over drive phases where the local mean allows it.
     struct Totals {

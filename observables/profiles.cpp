@@ -132,6 +132,18 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         if (pressure_) write_pressure(g);
     }
 
+    void checkpoint(StateArchive& ar) override {
+        ar.section("profiles");
+        ar.io(sums_);
+        ar.io(samples_in_block_);
+        ar.io(coll_);
+        ar.io(block_time_);
+        ar.io(last_time_);
+        ar.io(started_);
+        ar.io(current_block_);
+        ar.io(samples_);
+    }
+
   private:
     // Sums of one row (a bin or the middle window) over a set of blocks.
     struct Acc {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "libgran/plugins/observable.hpp"
+#include "observables/blocked_histogram.hpp"
 
 namespace gran {
 namespace {
@@ -107,6 +108,20 @@ class RestitutionStatistics final : public Observable<D>, public CollisionSink<D
         const double f = total > 0 ? double(above_one_) / total : 0;
         g.estimate("fraction_above_one",
                    Estimate{f, total > 0 ? std::sqrt(f * (1 - f) / total) : 0}, "");
+    }
+
+    // The histograms' axes come from the parameters: only their counts are archived.
+    void checkpoint(StateArchive& ar) override {
+        ar.section("restitution_statistics");
+        checkpoint_counts(ar, linear_);
+        checkpoint_counts(ar, tail_);
+        checkpoint_counts(ar, energy_);
+        for (auto& h : conditional_) checkpoint_counts(ar, h);
+        ar.io(conditional_total_);
+        ar.io(temperature_);
+        ar.io(measuring_);
+        ar.io(total_);
+        ar.io(above_one_);
     }
 
   private:

@@ -83,10 +83,25 @@ class SlabVelocityPdf final : public Observable<D> {
         }
     }
 
+    // The histograms' axes are archived with them (the raw range is set at the first sample).
+    void checkpoint(StateArchive& ar) override {
+        ar.section("slab_velocity_pdf");
+        ar.io(initialised_);
+        ar.io(samples_);
+        ar.io(cells_);
+    }
+
   private:
     struct Cell {
         BlockedHistogram hist;
         double n = 0, m2 = 0, m4 = 0;
+
+        void checkpoint(StateArchive& ar) {
+            ar.io(hist);
+            ar.io(n);
+            ar.io(m2);
+            ar.io(m4);
+        }
     };
     Cell& cell(std::size_t k, std::size_t s, int a) {
         return cells_[(k * table_.size() + s) * D + std::size_t(a)];

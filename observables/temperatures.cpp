@@ -124,12 +124,27 @@ class Temperatures final : public Observable<D> {
                "T_{s,a} = m_s <(v_a - U_a)^2>, U centre-of-mass velocity; gamma = T_s / T_ref");
     }
 
+    void checkpoint(StateArchive& ar) override {
+        ar.section("temperatures");
+        ar.io(per_species_);
+        ar.io(mixture_);
+        ar.io(time_);
+    }
+
   private:
     struct PerSpecies {
         Series t;
         std::array<Series, D> t_comp;
         Series t_rot;
         Series v2, v4;
+
+        void checkpoint(StateArchive& ar) {
+            ar.io(t);
+            ar.io(t_comp);
+            ar.io(t_rot);
+            ar.io(v2);
+            ar.io(v4);
+        }
     };
     const SpeciesTable& table_;
     std::size_t ref_ = 0;

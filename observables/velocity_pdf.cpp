@@ -89,10 +89,25 @@ class VelocityPdf final : public Observable<D> {
         g.attr("normalisation", "density: integral over all bins plus out-of-range mass equals 1");
     }
 
+    // The histograms' axes are archived with them (the raw range is set at the first sample).
+    void checkpoint(StateArchive& ar) override {
+        ar.section("velocity_pdf");
+        ar.io(initialised_);
+        ar.io(samples_);
+        ar.io(per_);
+    }
+
   private:
     struct PerSpecies {
         std::array<BlockedHistogram, D> raw, scaled;
         std::array<Series, D> c2, c4;
+
+        void checkpoint(StateArchive& ar) {
+            ar.io(raw);
+            ar.io(scaled);
+            ar.io(c2);
+            ar.io(c4);
+        }
     };
 
     void init(const SampleContext<D>& ctx) {

@@ -78,6 +78,19 @@ class WallPressure final : public Observable<D> {
         if (weight_ > 0) g.value("weight_per_area", weight_);
     }
 
+    void checkpoint(StateArchive& ar) override {
+        ar.section("wall_pressure");
+        ar.io(weight_);
+        ar.io(have_last_);
+        ar.io(last_time_);
+        ar.io(last_hits_);
+        ar.io(last_impulse_);
+        ar.io(rate_);
+        ar.io(force_);
+        ar.io(hits_);
+        ar.io(impulse_);
+    }
+
   private:
     const SpeciesTable& table_;
     int axis_ = 1;

@@ -10,10 +10,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "libgran/core/build_info.hpp"
+#include "libgran/run/checkpoint.hpp"
 #include "libgran/run/run.hpp"
 #include "libgran/scene/scene.hpp"
 #include "libgran/scene/scene_reference.hpp"
@@ -68,7 +70,13 @@ writable: all checked before the run starts (exit 1 otherwise). The result is wr
 `OUT.h5.part` and renamed when complete, so a failed run never replaces an existing result; a run
 that did not complete (interrupted, stopped by the watchdog) while `OUT.h5` holds a completed
 result is written beside it as `OUT.partial.h5` and `OUT.partial.summary.yaml`. SIGINT, SIGTERM,
-SIGHUP, SIGUSR1 and SIGXCPU stop a run and write what was measured (exit 3). See
+SIGHUP, SIGUSR1 and SIGXCPU stop a run and write what was measured (exit 3) and a checkpoint.
+
+`gran run --resume OUT.h5 [SCENE.yaml]`: continues the run to `OUT.h5` from `OUT.h5.checkpoint`,
+written every `run.checkpoint.interval` seconds (default 300) and when a run is interrupted. The
+result is bit for bit the one an uninterrupted run gives. The checkpoint holds the scene; a scene
+given beside it must resolve to the same one (the checkpoint interval may differ). A checkpoint
+written by another code version, for another scene, damaged or missing is refused (exit 2). See
 [reliability.md](reliability.md).
 
 `gran check SCENE.yaml [--set ...]`: every check `gran run` makes (the contacts, what the engine can
@@ -226,7 +234,7 @@ struct CommandLine {
     std::string log_level = "info";
     bool quiet = false;
     // run, check
-    std::string scene_file, output;
+    std::string scene_file, output, resume;
     std::vector<std::string> sets;
     // study (jobs: tradeoff too)
     std::string study_file, study_out;
@@ -244,10 +252,16 @@ struct CommandLine {
 
 CLI::App* add_run(CLI::App& app, CommandLine& cl) {
     auto* run = app.add_subcommand("run", "run a scene and write OUT.h5 plus OUT.summary.yaml");
-    run->add_option("scene", cl.scene_file, "scene file (YAML)")->required();
-    run->add_option("-o,--output", cl.output, "result file (default results/<scene>.h5)");
+    run->add_option("scene", cl.scene_file,
+                    "scene file (YAML); with --resume optional (the checkpoint holds the scene)");
+    auto* output =
+        run->add_option("-o,--output", cl.output, "result file (default results/<scene>.h5)");
     run->add_option("--set", cl.sets,
                     "override a scene key, e.g. --set run.measurement=100 (repeatable)");
+    run->add_option("--resume", cl.resume,
+                    "continue the run to OUT.h5 from its checkpoint OUT.h5.checkpoint; the result "
+                    "is bit for bit that of an uninterrupted run")
+        ->excludes(output);
     run->fallthrough();
     return run;
 }
@@ -311,9 +325,52 @@ CLI::App* add_list(CLI::App& app, CommandLine& cl) {
     return list;
 }
 
+// The run's result and exit status: 0 completed, 1 stopped by the watchdog, 3 interrupted.
+int report_run(const gran::RunReport& rep) {
+    print_headline(rep.summary);
+    std::cout << fmt::format("result: {}\nsummary: {}\n", rep.output, rep.summary_file);
+    if (!rep.error.empty()) {
+        // The watchdog stopped the run: a failure (exit 1), with what was measured written.
+        std::cerr << "gran: error: " << rep.error << "\n";
+        return 1;
+    }
+    if (!rep.completed) {
+        spdlog::warn("run did not complete; the result holds the data measured so far");
+        return 3;
+    }
+    return 0;
+}
+
+gran::RunOptions run_options(const CommandLine& cl, int argc, char** argv) {
+    gran::RunOptions opt;
+    opt.output = !cl.resume.empty()  ? cl.resume
+                 : cl.output.empty() ? default_output(cl.scene_file)
+                                     : cl.output;
+    opt.progress = !cl.quiet;
+    opt.terminal = isatty(STDERR_FILENO) != 0;
+    opt.command_line.assign(argv, argv + argc);
+    opt.interrupt = &g_interrupt;
+    return opt;
+}
+
+// `gran run --resume OUT.h5 [SCENE.yaml]`: the scene, if given, must be the checkpoint's.
+int cmd_resume(const CommandLine& cl, int argc, char** argv) {
+    std::optional<gran::Scene> given;
+    if (!cl.scene_file.empty()) given = gran::load_scene(cl.scene_file, cl.sets);
+    if (!cl.sets.empty() && !given)
+        throw gran::SceneError("gran run --resume: --set needs the scene file it changes");
+    stop_on_signals();
+    const gran::RunOptions opt = run_options(cl, argc, argv);
+    spdlog::info("resuming {} from {}", opt.output, gran::checkpoint_path_for(opt.output));
+    return report_run(gran::resume_run(opt, given ? &*given : nullptr));
+}
+
 // `gran run` and `gran check` (check_only).
 int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
     try {
+        if (!check_only && !cl.resume.empty()) return cmd_resume(cl, argc, argv);
+        if (cl.scene_file.empty())
+            throw gran::SceneError("gran run: give a scene file, or --resume OUT.h5");
         gran::Scene scene = gran::load_scene(cl.scene_file, cl.sets);
         if (check_only) {
             gran::check_scene(scene);
@@ -323,28 +380,14 @@ int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
             return 0;
         }
         stop_on_signals();
-        gran::RunOptions opt;
-        opt.output = cl.output.empty() ? default_output(cl.scene_file) : cl.output;
-        opt.progress = !cl.quiet;
-        opt.terminal = isatty(STDERR_FILENO) != 0;
-        opt.command_line.assign(argv, argv + argc);
-        opt.interrupt = &g_interrupt;
+        const gran::RunOptions opt = run_options(cl, argc, argv);
         spdlog::info("running {} ({}D, {} particles, packing fraction {:.4g})", cl.scene_file,
                      scene.dimension, scene.species.total_count(), scene.packing_fraction);
-        const gran::RunReport rep = gran::run_scene(scene, opt);
-        print_headline(rep.summary);
-        std::cout << fmt::format("result: {}\nsummary: {}\n", rep.output, rep.summary_file);
-        if (!rep.error.empty()) {
-            // The watchdog stopped the run: a failure (exit 1), with what was measured written.
-            std::cerr << "gran: error: " << rep.error << "\n";
-            return 1;
-        }
-        if (!rep.completed) {
-            spdlog::warn("run did not complete; the result holds the data measured so far");
-            return 3;
-        }
-        return 0;
+        return report_run(gran::run_scene(scene, opt));
     } catch (const gran::SceneError& e) {
+        std::cerr << "gran: error: " << e.what() << "\n";
+        return 2;
+    } catch (const gran::CheckpointError& e) {
         std::cerr << "gran: error: " << e.what() << "\n";
         return 2;
     } catch (const std::exception& e) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "libgran/core/state_archive.hpp"
 #include "libgran/core/vec.hpp"
 
 namespace gran {
@@ -18,6 +19,14 @@ struct Particles {
     std::vector<AngVec<D>> w;  // empty unless some pair law needs rotation
 
     std::size_t size() const { return r.size(); }
+    void checkpoint(StateArchive& ar) {
+        ar.section("particles");
+        ar.io(r);
+        ar.io(v);
+        ar.io(t);
+        ar.io(species);
+        ar.io(w);
+    }
     bool rotating() const { return !w.empty(); }
     void resize(std::size_t n, bool with_rotation) {
         r.assign(n, Vec<D>::Zero());

@@ -15,6 +15,8 @@
 #include <span>
 #include <vector>
 
+#include "libgran/core/state_archive.hpp"
+
 namespace gran {
 
 // A value with one standard error and what the error rests on. `error` is NaN when it cannot be
@@ -113,6 +115,7 @@ class Series {
     std::span<const double> values() const { return v_; }
     Estimate estimate() const { return block_average(v_); }
     void reserve(std::size_t n) { v_.reserve(n); }
+    void checkpoint(StateArchive& ar) { ar.io(v_); }
 
   private:
     std::vector<double> v_;

@@ -12,10 +12,10 @@
 
 namespace gran {
 
-namespace {
+namespace {}  // namespace
 
 // The text of a readable regular file, or a SceneError naming the path and the cause.
-std::string read_text(const std::string& path, const std::string& what) {
+std::string read_yaml_text(const std::string& path, const std::string& what) {
     namespace fs = std::filesystem;
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
@@ -34,6 +34,8 @@ std::string read_text(const std::string& path, const std::string& what) {
             fmt::format("{}: cannot read the {}: {}", path, what, std::strerror(errno)));
     return ss.str();
 }
+
+namespace {
 
 // 1-based line of the first document marker '---' after the first document's content, for the
 // message refusing a second document (0 when not found).
@@ -55,7 +57,11 @@ std::size_t second_document_line(const std::string& text) {
 }  // namespace
 
 YAML::Node load_yaml_file(const std::string& path, const std::string& what) {
-    const std::string text = read_text(path, what);
+    return parse_yaml_text(read_yaml_text(path, what), path, what);
+}
+
+YAML::Node parse_yaml_text(const std::string& text, const std::string& path,
+                           const std::string& what) {
     std::vector<YAML::Node> docs;
     try {
         docs = YAML::LoadAll(text);

@@ -10,5 +10,9 @@ namespace gran {
 
 // `what` names the file's role in messages ("scene file", "study file").
 YAML::Node load_yaml_file(const std::string& path, const std::string& what);
+// The two halves: the file's text, and its one document (`path` names errors).
+std::string read_yaml_text(const std::string& path, const std::string& what);
+YAML::Node parse_yaml_text(const std::string& text, const std::string& path,
+                           const std::string& what);
 
 }  // namespace gran

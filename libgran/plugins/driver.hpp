@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "libgran/core/registry.hpp"
+#include "libgran/core/state_archive.hpp"
 #include "libgran/plugins/engine_view.hpp"
 #include "libgran/plugins/scene_info.hpp"
 #include "libgran/plugins/wall.hpp"
@@ -40,6 +41,10 @@ class Driver {
     // Its own statistics (e.g. injected energy) under /drivers/<name> and the summary's
     // drivers.<name> (libgran/run/result_sink.hpp).
     virtual void write(ResultGroup& /*out*/) const {}
+    // Every member that changes during the run (next kick, random streams, injected energy), in
+    // one function for saving and loading (libgran/core/state_archive.hpp), wall reflections
+    // included: a checkpoint restores it and the resumed run must continue bit for bit.
+    virtual void checkpoint(StateArchive& ar) = 0;
 };
 
 using DriverRegistry = Registry<DimensionalPlugin<Driver>>;

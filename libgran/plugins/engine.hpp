@@ -53,6 +53,11 @@ class EngineRunner {
     virtual const std::string& failure() const = 0;
     // The engine's own counters and figures under /performance (and the summary's performance).
     virtual void write_performance(ResultGroup& perf, double cpu) const = 0;
+    // The engine's whole dynamic state (particles and their clocks, pending events, cells,
+    // neighbour lists and contact history, counters, watchdog windows), saved or loaded
+    // (libgran/core/state_archive.hpp) between two events or steps: the loaded runner continues
+    // bit for bit as the saved one would have.
+    virtual void checkpoint(StateArchive& ar) = 0;
 };
 
 // What a scene's drivers and observables ask of an engine, without the dimension: the engine's

@@ -8,6 +8,7 @@
 
 #include "libgran/core/collision_record.hpp"
 #include "libgran/core/registry.hpp"
+#include "libgran/core/state_archive.hpp"
 #include "libgran/core/statistics.hpp"
 #include "libgran/plugins/engine_view.hpp"
 #include "libgran/plugins/scene_info.hpp"
@@ -38,6 +39,11 @@ class Observable {
     // Results under /observables/<name> and the summary's observables.<name>
     // (libgran/run/result_sink.hpp).
     virtual void write(ResultGroup& out) const = 0;
+    // Every member that changes during the run (accumulators, series, counters, random streams),
+    // in one function for saving and loading (libgran/core/state_archive.hpp): a checkpoint
+    // restores it and the resumed run must continue bit for bit. Members set from the scene at
+    // construction need not be listed.
+    virtual void checkpoint(StateArchive& ar) = 0;
 };
 
 // Mass-weighted mean velocity: temperatures are defined from velocities relative to it.

@@ -112,6 +112,12 @@ class DemRunner final : public EngineRunner<D> {
         return Advance::Reached;
     }
 
+    void checkpoint(StateArchive& ar) override {
+        ar.section("dem runner");
+        ar.io(engine_);
+        ar.io(failure_);
+    }
+
     void write_performance(ResultGroup& perf, double cpu) const override {
         const auto& c = engine_.counters();
         const double n = double(engine_.particles().size());

@@ -75,6 +75,7 @@ class EventDrivenRunner final : public EngineRunner<D> {
           watchdog_(sc.watchdog),
           tc_(engine_settings(sc).tc_guard ? engine_settings(sc).tc : 0.0),
           species_(&sc.species) {
+        for (const auto& d : sc.drivers) driver_names_.push_back(d.name);
         for (auto& d : drivers) {
             for (const WallSpec<D>& w : d->walls()) {
                 engine_.set_wall(w.axis, w.side, event_driven_motion(w.motion),
@@ -121,15 +122,32 @@ class EventDrivenRunner final : public EngineRunner<D> {
             }
             if (stop == Stop::CollisionLimit) return Advance::Reached;
             // Time limit: the kicks that are due; stop when the sample time is reached.
-            for (auto& d : drivers_) {
-                if (d->next_kick() <= engine_.now()) {
-                    engine_.synchronize();
-                    d->kick(engine_.particles_for_update(), *species_);
-                    engine_.velocities_changed();
+            for (std::size_t k = 0; k < drivers_.size(); ++k) {
+                Driver<D>& d = *drivers_[k];
+                if (d.next_kick() > engine_.now()) continue;
+                const double at = engine_.now();
+                engine_.synchronize();
+                d.kick(engine_.particles_for_update(), *species_);
+                engine_.velocities_changed();
+                if (!(d.next_kick() > at)) {  // the time would never advance again
+                    failure_ = fmt::format(
+                        "driver '{}': its next kick is not after t = {:.17g} (an interval below "
+                        "the resolution of the time there): increase drivers[{}].interval",
+                        driver_names_[k], at, k);
+                    return Advance::Watchdog;
                 }
             }
             if (engine_.now() >= t_target) return Advance::Reached;
         }
+    }
+
+    void checkpoint(StateArchive& ar) override {
+        ar.section("event_driven runner");
+        ar.io(engine_);
+        ar.io(window_start_events_);
+        ar.io(window_start_time_);
+        ar.io(reference_rate_);
+        ar.io(failure_);
     }
 
     void write_performance(ResultGroup& perf, double cpu) const override {
@@ -177,6 +195,7 @@ class EventDrivenRunner final : public EngineRunner<D> {
     }
 
     DriverList<D>& drivers_;
+    std::vector<std::string> driver_names_;
     CollisionFanout<D> fanout_;
     EventDrivenEngine<D> engine_;
     EventDrivenView<D> view_;

@@ -1,14 +1,21 @@
 #pragma once
 // Trajectory frames (scene key `output.frames`) under /particles/all in the H5MD layout: position
 // and velocity as {value (frames x N x D), time, step}, `box` with the attributes dimension and
-// boundary and the dataset edges, and the species of every particle. Each frame is appended to the
-// open result file when it is taken, so frames never pile up in memory.
+// boundary and the dataset edges, and the species of every particle.
+//
+// While the run goes on, each frame is appended to a journal beside the result (OUT.h5.frames.part:
+// the species once, then per frame its time, positions and velocities as raw doubles) and never
+// held in memory. A raw append-only file survives a kill whole up to its last complete frame, which
+// an HDF5 file being written does not; at each checkpoint the journal is synced and its frame count
+// saved, and a resumed run cuts it back to that count. At the end the frames are copied into the
+// result file and the journal is removed.
 #include <cstdint>
-#include <optional>
+#include <cstdio>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "libgran/core/state_archive.hpp"
 #include "libgran/plugins/engine_view.hpp"
 #include "libgran/run/result_sink.hpp"
 #include "libgran/scene/scene.hpp"
@@ -23,31 +30,47 @@ struct FrameBox {
 
 FrameBox frame_box(const Scene& sc);
 
+// OUT.h5.frames.part beside OUT.h5.
+std::string frames_journal_path_for(const std::string& output);
+
 class FrameWriter {
   public:
     // At most `limit` frames (none when 0), one every expected_samples / limit measurement
-    // samples, under root/particles/all (made with the first frame: no frame, no group).
-    FrameWriter(ResultGroup root, FrameBox box, std::size_t limit, std::size_t expected_samples);
+    // samples; the journal is made with the first frame (no frame, no journal).
+    FrameWriter(std::string journal, FrameBox box, std::size_t limit, std::size_t expected_samples);
+    ~FrameWriter();
+    FrameWriter(const FrameWriter&) = delete;
+    FrameWriter& operator=(const FrameWriter&) = delete;
 
     bool due(std::size_t samples_taken) const;
     // One frame: positions and velocities by original particle index (N x D each); `species` (N)
-    // is written with the first frame.
+    // is written with the first frame. OutputError naming the journal when it cannot be written.
     void append(double time, std::span<const double> positions, std::span<const double> velocities,
                 std::span<const std::int64_t> species);
     std::size_t frames() const { return frames_; }
 
-  private:
-    struct Quantity {
-        h5::Appendable value, time, step;
-    };
-    Quantity open_quantity(ResultGroup& all, const std::string& name, std::size_t n);
+    // Every frame so far on disk (a checkpoint follows).
+    void sync();
+    // The frame count; loading cuts the journal back to it (StateMismatch when it is shorter).
+    void checkpoint(StateArchive& ar);
+    // The frames into root/particles/all (nothing when there are none).
+    void write(ResultGroup root);
+    // The journal, once the run has ended.
+    void remove();
 
-    ResultGroup root_;
+  private:
+    std::size_t frame_bytes() const;
+    std::size_t header_bytes() const;
+    void put(const void* data, std::size_t bytes);
+    void open_journal(bool existing);
+
+    std::string journal_;
     FrameBox box_;
     std::size_t limit_;
     std::size_t every_;
     std::size_t frames_ = 0;
-    std::optional<Quantity> position_, velocity_;
+    std::size_t particles_ = 0;
+    std::FILE* file_ = nullptr;
 };
 
 // The particles of a view by original index (the engine may re-sort them), into reused buffers.

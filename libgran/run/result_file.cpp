@@ -55,6 +55,9 @@ void write_run_performance(ResultGroup& performance, const RunTotals& t) {
     file.value("samples", t.samples);
     file.flag("completed", t.completed);
     file.flag("interrupted", t.interrupted);
+    file.value("checkpoints", t.checkpoints);
+    file.value("resumes", t.resumes);
+    file.value("checkpoint_time", t.checkpoint_time, "s");
     if (!t.watchdog_stop.empty()) file.attr("watchdog_stop", t.watchdog_stop);
 }
 

@@ -26,7 +26,10 @@ struct RunTotals {
     std::size_t samples = 0;  // measurement samples taken
     bool completed = false;
     bool interrupted = false;
-    std::string watchdog_stop;  // why the watchdog stopped the run (empty: it did not)
+    std::string watchdog_stop;      // why the watchdog stopped the run (empty: it did not)
+    std::uint64_t checkpoints = 0;  // checkpoints written (all sessions of a resumed run)
+    std::uint64_t resumes = 0;      // times the run was resumed from a checkpoint
+    double checkpoint_time = 0;     // wall-clock s spent writing checkpoints
 };
 
 // wall_time and cpu_time (HDF5 and summary), the rest in HDF5 only (the summary has `status`).

@@ -7,8 +7,10 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <filesystem>
 
 #include "libgran/plugins/engine.hpp"
+#include "libgran/run/checkpoint.hpp"
 #include "libgran/run/equilibration.hpp"
 #include "libgran/run/frames.hpp"
 #include "libgran/run/initial_state.hpp"
@@ -40,29 +42,90 @@ struct ScheduleOutcome {
     }
 };
 
+// Where the schedule is: the phase (0 equilibration, 1 measurement), the next sample of it, and
+// the phase's start (time and collisions), once it has started.
+struct SchedulePosition {
+    int phase = 0;
+    std::size_t next_sample = 1;
+    bool started = false;
+    double t0 = 0;
+    std::uint64_t c0 = 0;
+};
+
+// Where checkpoints go (path empty: none) and how often (wall-clock s; 0: only when interrupted).
+struct CheckpointPlan {
+    std::string path;
+    double interval = 0;
+    CheckpointHeader header;
+};
+
 // Equilibration then measurement, each with samples at fixed intervals (of time or collisions per
-// particle); at each sample the observables are sampled and frames appended to the result file.
+// particle); at each sample the observables are sampled and frames appended to the journal.
+// Checkpoints between chunks of engine work; a loaded checkpoint continues where it was written.
 template <int D>
 class ScheduleLoop {
   public:
-    ScheduleLoop(const Scene& sc, const RunOptions& opt, EngineRunner<D>& runner,
-                 ObservableList<D>& observables, ResultGroup root)
+    ScheduleLoop(const Scene& sc, const RunOptions& opt, SimulationState<D>& st,
+                 CheckpointPlan plan, double cpu0)
         : sc_(sc),
           opt_(opt),
-          runner_(runner),
-          observables_(observables),
+          st_(st),
+          runner_(*st.runner),
           expected_samples_(samples_in(sc.schedule.measurement)),
-          frames_(std::move(root), frame_box(sc), sc.frames, expected_samples_),
-          progress_(opt.progress, opt.terminal, sc.progress_interval, runner.work_unit()) {
+          frames_(frames_journal_path_for(opt.output), frame_box(sc), sc.frames, expected_samples_),
+          progress_(opt.progress, opt.terminal, sc.progress_interval, runner_.work_unit()),
+          plan_(std::move(plan)),
+          cpu0_(cpu0),
+          last_checkpoint_(std::chrono::steady_clock::now()) {
         out_.measured_energy.reserve(expected_samples_);
     }
 
     ScheduleOutcome run() {
-        for (int phase = 0; phase < 2 && !out_.stopped(); ++phase) run_phase(phase == 1);
+        while (pos_.phase < 2 && !out_.stopped()) {
+            run_phase(pos_.phase == 1);
+            if (out_.stopped()) break;
+            pos_ = SchedulePosition{pos_.phase + 1};
+        }
         progress_.finish();
         return std::move(out_);
     }
-    double elapsed() const { return progress_.elapsed(); }
+    // Wall-clock and CPU seconds of the whole run (earlier sessions of a resumed run included).
+    double elapsed() const { return prior_wall_ + progress_.elapsed(); }
+    double cpu() const { return prior_cpu_ + double(std::clock()) / CLOCKS_PER_SEC - cpu0_; }
+    std::uint64_t checkpoints() const { return checkpoints_; }
+    double checkpoint_seconds() const { return checkpoint_seconds_; }
+    std::uint64_t resumes() const { return resumes_; }
+    FrameWriter& frames() { return frames_; }
+
+    // The whole state of the run: the schedule's, the frames', the engine's, every driver's and
+    // every observable's (saving or loading, libgran/core/state_archive.hpp).
+    void checkpoint(StateArchive& ar) {
+        ar.section("schedule");
+        ar.io(pos_.phase);
+        ar.io(pos_.next_sample);
+        ar.io(pos_.started);
+        ar.io(pos_.t0);
+        ar.io(pos_.c0);
+        ar.io(out_.samples);
+        ar.io(out_.measured_energy);
+        ar.io(out_.t_measure_start);
+        ar.io(out_.coll_measure_start);
+        double wall = elapsed(), cpu_time = cpu();
+        ar.io(wall);
+        ar.io(cpu_time);
+        ar.io(checkpoints_);
+        ar.io(checkpoint_seconds_);
+        ar.io(resumes_);
+        if (ar.loading()) {
+            prior_wall_ = wall;
+            prior_cpu_ = cpu_time;
+            ++resumes_;
+        }
+        ar.io(frames_);
+        ar.io(runner_);
+        for (auto& d : st_.drivers) ar.io(*d);
+        for (auto& o : st_.observables) ar.io(*o);
+    }
 
   private:
     std::size_t samples_in(double length) const {
@@ -73,25 +136,32 @@ class ScheduleLoop {
         const auto& s = sc_.schedule;
         const double length = measuring ? s.measurement : s.equilibration;
         if (length <= 0) return;
-        const double t0 = runner_.now();
-        const std::uint64_t c0 = runner_.collisions();
-        if (measuring) {
-            out_.t_measure_start = t0;
-            out_.coll_measure_start = c0;
+        if (!pos_.started) {
+            pos_.started = true;
+            pos_.t0 = runner_.now();
+            pos_.c0 = runner_.collisions();
+            if (measuring) {
+                out_.t_measure_start = pos_.t0;
+                out_.coll_measure_start = pos_.c0;
+            }
         }
         const std::size_t nsamples = samples_in(length);
-        for (std::size_t k = 1; k <= nsamples; ++k) {
-            if (!advance_to(t0, c0, k, measuring)) return;
+        while (pos_.next_sample <= nsamples) {
+            const std::size_t k = pos_.next_sample;
+            if (!advance_to(pos_.t0, pos_.c0, k, measuring)) return;
             sample(measuring);
             const double done =
                 (measuring ? s.equilibration : 0.0) + length * double(k) / double(nsamples);
             progress_.update(measuring ? "measurement" : "equilibration",
                              done / (s.equilibration + s.measurement), runner_.work());
+            ++pos_.next_sample;
+            checkpoint_if_due(std::chrono::steady_clock::now());
         }
     }
 
     // To the k-th sample of a phase that started at time t0 with c0 collisions; false when the
-    // run stops there (interrupt, no more events, watchdog).
+    // run stops there (interrupt, no more events, watchdog). An interrupted run writes a
+    // checkpoint first: it can be resumed.
     bool advance_to(double t0, std::uint64_t c0, std::size_t k, bool measuring) {
         const auto& s = sc_.schedule;
         const bool by_time = s.unit == ScheduleUnit::Time;
@@ -101,6 +171,7 @@ class ScheduleLoop {
         const std::uint64_t c_target =
             by_time ? UINT64_MAX : c0 + static_cast<std::uint64_t>(std::llround(at * n / 2.0));
         const Advance adv = advance_in_chunks(t_target, c_target, t0, c0, measuring);
+        if (adv == Advance::Interrupted) save_checkpoint();
         out_.interrupted = adv == Advance::Interrupted;
         out_.stalled = adv == Advance::Stalled || adv == Advance::Watchdog;
         if (adv == Advance::Watchdog) out_.watchdog_stop = runner_.failure();
@@ -114,8 +185,10 @@ class ScheduleLoop {
     }
 
     // Advances to the target in chunks of engine work of about a quarter of a second, so that the
-    // progress line moves from the start and within long intervals between samples. The engines
-    // stop between two events or steps, so the chunks leave the trajectory bit for bit unchanged.
+    // progress line moves from the start and within long intervals between samples, and
+    // checkpoints can be written between chunks. The engines stop between two events or steps
+    // and a stop changes nothing, so the chunks (and checkpoints) leave the trajectory bit for
+    // bit unchanged.
     Advance advance_in_chunks(double t_target, std::uint64_t c_target, double t0, std::uint64_t c0,
                               bool measuring) {
         const auto& s = sc_.schedule;
@@ -128,8 +201,8 @@ class ScheduleLoop {
                 runner_.advance(t_target, c_target, runner_.work() + chunk_, opt_.interrupt);
             const bool reached = runner_.now() >= t_target || runner_.collisions() >= c_target;
             if (adv != Advance::Reached || reached) return adv;
-            const double secs =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const auto end = std::chrono::steady_clock::now();
+            const double secs = std::chrono::duration<double>(end - start).count();
             const double grow = secs > 0 ? std::clamp(0.25 / secs, 0.25, 4.0) : 4.0;
             chunk_ = std::max<std::uint64_t>(16, std::uint64_t(double(chunk_) * grow));
             const double done = s.unit == ScheduleUnit::Time
@@ -138,13 +211,43 @@ class ScheduleLoop {
             progress_.update(measuring ? "measurement" : "equilibration",
                              (before + std::min(done, length)) / (s.equilibration + s.measurement),
                              runner_.work());
+            checkpoint_if_due(end);
         }
+    }
+
+    // Between chunks and after samples: a checkpoint once `interval` has passed since the last.
+    void checkpoint_if_due(std::chrono::steady_clock::time_point now) {
+        if (plan_.interval > 0 &&
+            std::chrono::duration<double>(now - last_checkpoint_).count() >= plan_.interval)
+            save_checkpoint();
+    }
+
+    // The state now, atomically to the checkpoint file, after the frames so far are on disk.
+    void save_checkpoint() {
+        if (plan_.path.empty()) return;
+        frames_.sync();
+        const auto start = std::chrono::steady_clock::now();
+        ++checkpoints_;
+        StateArchive ar = StateArchive::saver();
+        checkpoint(ar);
+        Checkpoint c{plan_.header, ar.bytes()};
+        c.header.writes = checkpoints_;
+        try {
+            write_checkpoint(plan_.path, c);
+        } catch (const OutputError& e) {  // the previous checkpoint is intact; the run goes on
+            spdlog::warn("{}", e.what());
+        }
+        last_checkpoint_ = std::chrono::steady_clock::now();
+        const double secs = std::chrono::duration<double>(last_checkpoint_ - start).count();
+        checkpoint_seconds_ += secs;
+        spdlog::debug("checkpoint {}: {:.3g} MB in {:.3g} s", checkpoints_,
+                      double(c.state.size()) / 1e6, secs);
     }
 
     void sample(bool measuring) {
         const EngineView<D>& view = runner_.view();
         SampleContext<D> ctx{runner_.now(), measuring, expected_samples_, view, sc_.species};
-        for (auto& o : observables_) o->sample(ctx);
+        for (auto& o : st_.observables) o->sample(ctx);
         if (!measuring) return;
         ++out_.samples;
         out_.measured_energy.push_back(view.kinetic_energy_per_particle(sc_.species));
@@ -156,12 +259,19 @@ class ScheduleLoop {
 
     const Scene& sc_;
     const RunOptions& opt_;
+    SimulationState<D>& st_;
     EngineRunner<D>& runner_;
-    ObservableList<D>& observables_;
     std::size_t expected_samples_;
     FrameWriter frames_;
     Progress progress_;
     ScheduleOutcome out_;
+    SchedulePosition pos_;
+    CheckpointPlan plan_;
+    double cpu0_;
+    double prior_wall_ = 0, prior_cpu_ = 0;  // earlier sessions of a resumed run
+    std::uint64_t checkpoints_ = 0, resumes_ = 0;
+    double checkpoint_seconds_ = 0;  // wall-clock s spent writing them
+    std::chrono::steady_clock::time_point last_checkpoint_;
     std::uint64_t chunk_ = 1024;  // engine work per advance call (advance_in_chunks)
     std::vector<double> positions_, velocities_;  // one frame, reused
     std::vector<std::int64_t> species_;
@@ -190,23 +300,51 @@ void write_results(ResultGroup root, const Scene& sc, const EngineRunner<D>& run
     report_equilibration(check_equilibration(out.measured_energy), sc.schedule, driven, perf);
 }
 
-// Runs the scene's Simulation through its schedule and writes the result.
+// The checkpoints of a run to `output` (none without a path).
+CheckpointPlan checkpoint_plan(const Scene& sc, const RunOptions& opt) {
+    CheckpointPlan plan;
+    plan.path = checkpoint_path_for(opt.output);
+    plan.interval = sc.checkpoint_interval;
+    plan.header = checkpoint_header(sc, opt.command_line);
+    return plan;
+}
+
+// The checkpoint's state into a freshly built simulation (CheckpointError when it does not fit).
 template <int D>
-RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, double cpu0) {
+void load_state(ScheduleLoop<D>& loop, const Checkpoint& c, const std::string& path) {
+    try {
+        StateArchive ar = StateArchive::loader(c.state);
+        loop.checkpoint(ar);
+        if (!ar.at_end()) throw StateMismatch("the state is longer than this scene's");
+    } catch (const StateMismatch& e) {
+        throw CheckpointError(fmt::format("{}: cannot resume: {}", path, e.what()));
+    }
+}
+
+// Runs the scene's Simulation through its schedule (from a checkpoint's state when `resume` is
+// given) and writes the result.
+template <int D>
+RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, double cpu0,
+                   const Checkpoint* resume) {
     SimulationState<D>& st = sim.state<D>();
     EngineRunner<D>& runner = *st.runner;
+    ScheduleLoop<D> loop(sc, opt, st, checkpoint_plan(sc, opt), cpu0);
+    if (resume) {
+        load_state(loop, *resume, checkpoint_path_for(opt.output));
+        spdlog::info("resumed from {} at t = {:.6g} ({} {})", checkpoint_path_for(opt.output),
+                     runner.now(), runner.work(), runner.work_unit());
+    }
     // Created once the scene is known to run (the runner checked it): a failing run leaves the
     // .part file and never touches an earlier result.
     ResultSink sink(opt.output);
     write_provenance(sink.root(), sc, opt.command_line);
-    ScheduleOutcome out;
+    const ScheduleOutcome out = loop.run();
     RunTotals totals;
-    {
-        ScheduleLoop<D> loop(sc, opt, runner, st.observables, sink.root());
-        out = loop.run();
-        totals.wall_time = loop.elapsed();
-    }  // closes the frames
-    totals.cpu_time = double(std::clock()) / CLOCKS_PER_SEC - cpu0;
+    totals.wall_time = loop.elapsed();
+    totals.cpu_time = loop.cpu();
+    totals.checkpoints = loop.checkpoints();
+    totals.checkpoint_time = loop.checkpoint_seconds();
+    totals.resumes = loop.resumes();
     if (out.interrupted) spdlog::warn("interrupted: writing what was measured so far");
     if (!out.watchdog_stop.empty()) spdlog::warn("watchdog: writing what was measured so far");
     const std::size_t n = runner.view().particles().size();
@@ -218,6 +356,7 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     totals.completed = !out.stopped();
     totals.interrupted = out.interrupted;
     totals.watchdog_stop = out.watchdog_stop;
+    loop.frames().write(sink.root());  // before the summary's `particles` (file only)
     write_summary_header(sink.summary(), sc, opt.output, out.status(), out.watchdog_stop, n);
     write_results<D>(sink.root(), sc, runner, st.drivers, st.observables, out, totals);
     for (const auto& q : sink.unreliable())
@@ -226,6 +365,13 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     if (sink.written() != opt.output)
         spdlog::warn("the completed result {} is kept; this run's data is in {}", opt.output,
                      sink.written());
+    if (out.interrupted) {
+        spdlog::info("resume with: gran run --resume {}", opt.output);
+    } else {  // the run has ended: nothing to resume
+        loop.frames().remove();
+        std::error_code ec;
+        std::filesystem::remove(checkpoint_path_for(opt.output), ec);
+    }
 
     RunReport rep;
     rep.completed = totals.completed;
@@ -234,6 +380,15 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     rep.summary_file = sink.summary_file();
     rep.summary = sink.summary();
     return rep;
+}
+
+RunReport run_from(const Scene& scene, const RunOptions& options, const Checkpoint* resume) {
+    const double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;  // the cost includes the set-up
+    // Before anything runs: a run must not be wasted on a path it cannot write.
+    check_output_path(options.output, {scene.file});
+    Simulation sim(scene, options.interrupt);
+    return scene.dimension == 2 ? run_with<2>(sim.scene(), options, sim, cpu0, resume)
+                                : run_with<3>(sim.scene(), options, sim, cpu0, resume);
 }
 
 }  // namespace
@@ -247,12 +402,21 @@ void check_scene(const Scene& scene) {
 }
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
-    const double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;  // the cost includes the set-up
-    // Before anything runs: a run must not be wasted on a path it cannot write.
-    check_output_path(options.output, {scene.file});
-    Simulation sim(scene, options.interrupt);
-    return scene.dimension == 2 ? run_with<2>(sim.scene(), options, sim, cpu0)
-                                : run_with<3>(sim.scene(), options, sim, cpu0);
+    if (std::filesystem::exists(checkpoint_path_for(options.output))) {
+        spdlog::warn(
+            "{} holds a checkpoint of an earlier run; this run starts over and replaces "
+            "it (gran run --resume {} would continue it)",
+            checkpoint_path_for(options.output), options.output);
+    }
+    return run_from(scene, options, nullptr);
+}
+
+RunReport resume_run(const RunOptions& options, const Scene* given) {
+    const Checkpoint c = read_checkpoint(checkpoint_path_for(options.output));
+    const Scene scene = scene_of(c);
+    check_resumable(c, given ? *given : scene);
+    // A scene given beside the checkpoint is the same but for its checkpoint interval: its own.
+    return run_from(given ? *given : scene, options, &c);
 }
 
 }  // namespace gran

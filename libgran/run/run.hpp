@@ -32,4 +32,11 @@ void check_scene(const Scene& scene);
 
 RunReport run_scene(const Scene& scene, const RunOptions& options);
 
+// Continues the run to options.output from its checkpoint (OUT.h5.checkpoint, written every
+// run.checkpoint.interval seconds and when a run is interrupted): the result is bit for bit the
+// one an uninterrupted run gives. The scene comes from the checkpoint; `given` (optional) must
+// resolve to the same scene. CheckpointError (libgran/run/checkpoint.hpp) when there is no
+// usable checkpoint, or it was written by other code or for another scene.
+RunReport resume_run(const RunOptions& options, const Scene* given = nullptr);
+
 }  // namespace gran

@@ -76,7 +76,12 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-    YAML::Node root = load_yaml_file(path, "scene file");
+    return load_scene_text(read_yaml_text(path, "scene file"), path, overrides);
+}
+
+Scene load_scene_text(const std::string& text, const std::string& path,
+                      const std::vector<std::string>& overrides) {
+    YAML::Node root = parse_yaml_text(text, path, "scene file");
     std::vector<std::pair<std::string, std::string>> paths;
     for (const auto& o : overrides) {
         apply_override(root, o);
@@ -89,7 +94,10 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
         paths.emplace_back(p, o);
     }
     OverrideScope scope(paths);
-    return parse_scene(root, path);
+    Scene sc = parse_scene(root, path);
+    sc.source = text;
+    sc.overrides = overrides;
+    return sc;
 }
 
 }  // namespace gran

@@ -169,8 +169,12 @@ void read_run(const YAML::Node& root, const Where& top, Scene& sc, YAML::Node& r
     sc.watchdog.window = static_cast<std::uint64_t>(wp.integer("window"));
     sc.watchdog.max_rate_growth = wp.real("max_rate_growth");
     sc.watchdog.max_events_per_tc = wp.real("max_events_per_tc");
+    Params cp = read_params(child(child(root, "run"), "checkpoint"), checkpoint_schema(),
+                            top.child("run").child("checkpoint"));
+    sc.checkpoint_interval = cp.real("interval");
     res["run"] = rp.resolved();
     res["run"]["watchdog"] = wp.resolved();
+    res["run"]["checkpoint"] = cp.resolved();
     sc.run_settings = rp;
 }
 
@@ -262,6 +266,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
 SceneInfo plugin_info(const Scene& scene, std::size_t index) {
     SceneInfo info = scene.info;
     info.index = index;
+    info.species = &scene.species;  // this copy's table (a Scene may have been copied or moved)
     return info;
 }
 

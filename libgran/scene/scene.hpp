@@ -32,6 +32,8 @@ struct PluginEntry {
 
 struct Scene {
     std::string file;
+    std::string source;                  // the file's text as read (checkpoints keep it)
+    std::vector<std::string> overrides;  // the --set assignments applied to it
     YAML::Node resolved;
     std::string title;
     std::string units = "reduced";  // or "SI"
@@ -54,6 +56,7 @@ struct Scene {
     std::vector<PluginEntry> observables;
     std::size_t frames = 0;
     double progress_interval = 10;
+    double checkpoint_interval = 300;   // run.checkpoint.interval: wall-clock s, 0: none
     std::string box_location;           // "file:line:col: box" for errors found when placing
     std::string interactions_location;  // "file:line:col: interactions"
     // What plugin factories read (index 0; peak velocity and drive period from the drivers).
@@ -62,6 +65,9 @@ struct Scene {
 
 // Reads and validates a scene file; `overrides` are "dotted.key=value" (--set) applied first.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+// The same from the file's text (`path` names errors): a checkpoint's scene.
+Scene load_scene_text(const std::string& text, const std::string& path,
+                      const std::vector<std::string>& overrides = {});
 // Validates an already parsed YAML document (file names errors).
 Scene parse_scene(const YAML::Node& root, const std::string& file);
 // Applies one "a.b.0.c=value" override to a YAML document.

@@ -98,7 +98,16 @@ Schema run_schema() {
             real("progress_interval", "10", "s",
                  "seconds between progress log lines when not on a terminal", 0, 1e308, true),
             list_of(ParamType::Map, "watchdog",
-                    "stops a run that stalls or produces NaN (see section run.watchdog)")};
+                    "stops a run that stalls or produces NaN (see section run.watchdog)"),
+            list_of(ParamType::Map, "checkpoint",
+                    "checkpoints for `gran run --resume` (see section run.checkpoint)")};
+}
+
+Schema checkpoint_schema() {
+    return {real("interval", "300", "s",
+                 "wall-clock seconds between checkpoints (0: none; a run also writes one when "
+                 "interrupted)",
+                 0, 1e308)};
 }
 
 Schema watchdog_schema() {
@@ -197,6 +206,17 @@ between chunks of work, never per event (libgran/run/watchdog.hpp). On both engi
 velocities, angular velocities and the kinetic energy are checked to be finite at every sample and
 every window.)md";
 
+const char* const kCheckpoint =
+    R"md(
+Every `interval` seconds of wall-clock time, and when the run is interrupted (SIGINT, SIGTERM,
+SIGHUP, SIGUSR1, SIGXCPU), the run writes OUT.h5.checkpoint: the complete state (particles and
+their clocks, pending events or forces and contact history, every random stream, the drivers'
+and observables' accumulators, the schedule position), atomically. `gran run --resume OUT.h5`
+continues from it and gives the same result, bit for bit, as a run never interrupted
+(docs/reliability.md). Trajectory frames go to OUT.h5.frames.part while the run goes on. Both
+files are removed once the run has ended (completed, or stopped by the watchdog); an interrupted
+run keeps them for the resume.)md";
+
 }  // namespace
 
 std::vector<SectionDoc> scene_sections() {
@@ -220,6 +240,8 @@ std::vector<SectionDoc> scene_sections() {
         {"run", "run schedule", run_schema(), kRun},
         {"run.watchdog", "stops runs that hang or produce NaN (on by default)", watchdog_schema(),
          kWatchdog},
+        {"run.checkpoint", "checkpoints a killed or interrupted run resumes from",
+         checkpoint_schema(), kCheckpoint},
         {"output", "output settings", output_schema()}};
 }
 

@@ -10,6 +10,7 @@ Schema box_schema();
 Schema initial_schema();
 Schema run_schema();
 Schema watchdog_schema();
+Schema checkpoint_schema();
 Schema output_schema();
 
 }  // namespace gran

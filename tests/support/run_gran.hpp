@@ -36,10 +36,11 @@ struct Outcome {
     std::string output;  // stdout and stderr, interleaved
 };
 
-// Runs gran with `args` through the shell, capturing stdout+stderr and the exit status.
-inline Outcome run_gran(const std::vector<std::string>& args) {
-    // `exec`: the shell becomes gran, so pclose reports gran's own status (and its signal).
-    std::string cmd = "exec " + shell_quote(kGran);
+// Runs a program (args[0]) with its arguments through the shell, capturing stdout+stderr and the
+// exit status.
+inline Outcome run_command(const std::vector<std::string>& args) {
+    // `exec`: the shell becomes the program, so pclose reports its own status (and its signal).
+    std::string cmd = "exec";
     for (const auto& a : args) cmd += " " + shell_quote(a);
     cmd += " 2>&1";
     Outcome out;
@@ -59,6 +60,13 @@ inline Outcome run_gran(const std::vector<std::string>& args) {
         out.exit_code = WEXITSTATUS(status);
     }
     return out;
+}
+
+// Runs gran with `args`.
+inline Outcome run_gran(const std::vector<std::string>& args) {
+    std::vector<std::string> all{kGran};
+    all.insert(all.end(), args.begin(), args.end());
+    return run_command(all);
 }
 
 }  // namespace gran::testing

@@ -337,6 +337,25 @@ void DemEngine<D>::remove_wall(int axis, int side) {
     reevaluate_forces();
 }
 
+template <int D>
+void DemEngine<D>::checkpoint(StateArchive& ar) {
+    ar.section("dem engine");
+    ar.io(p_);
+    ar.io(counters_);
+    ar.io(t_start_);
+    ar.io(steps_);
+    ar.io(f_);
+    ar.io(v_pred_);
+    ar.io(disp_);
+    ar.io(tau_);
+    ar.io(w_pred_);
+    ar.io(wall_touching_);
+    ar.io(wall_spring_);
+    ar.io(list_);
+    ar.io(wall_impulse_);
+    ar.io(wall_hits_);
+}
+
 template class DemEngine<2>;
 template class DemEngine<3>;
 

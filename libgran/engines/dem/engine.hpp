@@ -119,6 +119,10 @@ class DemEngine {
     const std::vector<AngVec<D>>& torques() const { return tau_; }
     DemEnergies energies() const;
     const DemNeighbourList<D>& neighbour_list() const { return list_; }
+    // The dynamic state, saved or loaded between steps (libgran/core/state_archive.hpp): particles,
+    // the forces of the last evaluation (the next half kick uses them), the predicted velocities,
+    // the displacements since the last list build, contact and wall-spring history, counters.
+    void checkpoint(StateArchive& ar);
     // Wall partner (index into contacts().walls) of a wall (index 2 * axis + side).
     std::size_t wall_partner(int code) const { return walls_[std::size_t(code)].partner; }
 

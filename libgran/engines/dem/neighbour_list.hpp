@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "libgran/core/box.hpp"
+#include "libgran/core/state_archive.hpp"
 #include "libgran/core/vec.hpp"
 
 namespace gran {
@@ -45,6 +46,25 @@ class DemNeighbourList {
     std::vector<std::uint32_t> owner;    // i of each entry (the row it belongs to)
     std::vector<std::uint8_t> touching;  // 1: in contact at the last force evaluation
     std::vector<Vec<D>> spring;          // tangential spring xi (history laws only)
+
+    // The entries in their order (the order forces are summed in) with their contact state, and
+    // the grid of the last build; the rest is rebuilt by each build.
+    void checkpoint(StateArchive& ar) {
+        ar.section("dem neighbour list");
+        ar.io(start);
+        ar.io(partner);
+        ar.io(owner);
+        ar.io(touching);
+        ar.io(spring);
+        ar.io(ncell_);
+        ar.io(stride_);
+        ar.io(lo_);
+        ar.io(inv_width_);
+        ar.io(min_image_);
+        ar.io(near_);
+        ar.io(shift_);
+        ar.io(cell_start_);
+    }
 
   private:
     static constexpr int kStencil = D == 2 ? 4 : 13;  // half of the 3^D - 1 neighbour offsets

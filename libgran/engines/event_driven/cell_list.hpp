@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "libgran/core/box.hpp"
+#include "libgran/core/state_archive.hpp"
 #include "libgran/core/vec.hpp"
 
 namespace gran {
@@ -201,6 +202,31 @@ class CellList {
             slot_[cell[k]] = k;
         }
     }
+
+  public:
+    // Grid and contents as laid out (the order of a cell's particles is the order of a scan's
+    // candidates, which breaks ties between equal collision times).
+    void checkpoint(StateArchive& ar) {
+        ar.section("cell list");
+        ar.io(ncell_);
+        ar.io(periodic_);
+        ar.io(width_);
+        ar.io(image_offsets_);
+        ar.io(total_);
+        ar.io(n_);
+        ar.io(cc_);
+        ar.io(cell_of_);
+        ar.io(slots_);
+        ar.io(slot_);
+        ar.io(cell_count_);
+        ar.io(cell_ids_);
+        ar.io(capacity_);
+        ar.io(next_);
+        ar.io(prev_);
+        ar.io(head_);
+    }
+
+  private:
     void size_grid(const Box<D>& box, double width, std::size_t n);
     void find_images(const Box<D>& box);
     void grow();

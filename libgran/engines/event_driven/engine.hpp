@@ -123,6 +123,10 @@ class EventDrivenEngine {
 
     void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
 
+    // The dynamic state, saved or loaded between events (libgran/core/state_archive.hpp); the
+    // walls' settings, the species and the contacts come from the scene.
+    void checkpoint(StateArchive& ar);
+
     // One wall of a bounded axis (side 0: lower, 1: upper): its motion and the contacts of wall
     // partner `partner` (index into the contacts' walls), or `reflection`, a rule that replaces the
     // contact (it must outlive the engine). A moving wall's surface is at base + motion.position(t)

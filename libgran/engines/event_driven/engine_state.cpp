@@ -54,6 +54,26 @@ void EventDrivenEngine<D>::sort_by_cell() {
     ++counters_.sorts;
 }
 
+template <int D>
+void EventDrivenEngine<D>::checkpoint(StateArchive& ar) {
+    ar.section("event_driven engine");
+    ar.io(p_);
+    ar.io(counters_);
+    ar.io(now_);
+    ar.io(t_origin_);
+    ar.io(limit_now_);
+    ar.io(count_);
+    ar.io(last_collision_);
+    ar.io(events_);
+    ar.io(cells_);
+    ar.io(pair_collisions_);
+    ar.io(wall_hit_count_);
+    ar.io(wall_impulse_);
+    ar.io(id_);
+    ar.io(events_since_sort_);
+    ar.io(sort_every_);
+}
+
 template void EventDrivenEngine<2>::rebase_time();
 template void EventDrivenEngine<2>::synchronize();
 template void EventDrivenEngine<2>::velocities_changed();
@@ -62,5 +82,7 @@ template void EventDrivenEngine<3>::rebase_time();
 template void EventDrivenEngine<3>::synchronize();
 template void EventDrivenEngine<3>::velocities_changed();
 template void EventDrivenEngine<3>::sort_by_cell();
+template void EventDrivenEngine<2>::checkpoint(StateArchive&);
+template void EventDrivenEngine<3>::checkpoint(StateArchive&);
 
 }  // namespace gran

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "libgran/core/state_archive.hpp"
+
 namespace gran {
 
 class EventQueue {
@@ -40,6 +42,11 @@ class EventQueue {
         }
     }
     std::size_t size() const { return heap_.size(); }
+    // The heap as laid out: equal times pop in layout order, so the layout is part of the state.
+    void checkpoint(StateArchive& ar) {
+        ar.io(heap_);
+        ar.io(pos_);
+    }
 
   private:
     static constexpr double kNever = 1e300;

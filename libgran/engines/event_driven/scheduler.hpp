@@ -89,6 +89,17 @@ class Scheduler {
         rebuild();
     }
 
+    void checkpoint(StateArchive& ar) {
+        ar.section("event scheduler");
+        ar.io(time_);
+        ar.io(code_);
+        ar.io(partner_count_);
+        ar.io(kept_time_);
+        ar.io(kept_partner_);
+        ar.io(kind_);
+        ar.io(queue_);
+    }
+
   private:
     std::vector<double> time_;
     std::vector<std::int32_t> code_;            // partner, or 2 axis + side

@@ -1,0 +1,205 @@
+// Checkpoint and resume through the command line (issue 13; docs/reliability.md): a run killed
+// with SIGKILL at seeded random moments and resumed each time gives the result of a run never
+// interrupted, bit for bit (observables, drivers and trajectory frames;
+// libgran/run/checkpoint.hpp). Both engines: a thermostat, moving walls with rotation (rough
+// spheres, event-driven) and with friction and contact history (DEM); every driver and observable
+// is in one of the scenes.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "libgran/core/h5.hpp"
+#include "libgran/run/checkpoint.hpp"
+#include "tests/support/gran_process.hpp"
+#include "tests/support/run_gran.hpp"
+#include "tests/support/temp_dir_test.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using gran::testing::GranProcess;
+using gran::testing::read_text;
+using gran::testing::run_gran;
+
+const std::string kScenes = std::string(GRAN_TEST_DATA) + "/checkpoint/";
+
+class Checkpoint : public gran::testing::TempDirTest {
+  protected:
+    Checkpoint() : TempDirTest("gran_checkpoint") {}
+
+    // The uninterrupted run, without checkpoints, into ref/.
+    void run_reference(const std::string& scene) {
+        fs::create_directories(dir_ / "ref");
+        const auto r = run_gran({"run", kScenes + scene, "-o", path("ref/r.h5"), "-q", "--set",
+                                 "run.checkpoint.interval=0"});
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+    }
+
+    // Bit identity of run/r.h5 and ref/r.h5: every dataset and attribute under /observables,
+    // /drivers and /particles (tests/regression/compare_result_dirs.py).
+    void expect_identical_to_reference() {
+        const auto r = gran::testing::run_command(
+            {"/usr/bin/python3",
+             std::string(GRAN_SOURCE_DIR) + "/tests/regression/compare_result_dirs.py", path("run"),
+             path("ref")});
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_NE(r.output.find("1 of 1 common runs bit-identical"), std::string::npos) << r.output;
+    }
+
+    std::int64_t performance(const std::string& name) const {
+        const auto f = gran::h5::File::open_read(path("run/r.h5"));
+        return f.root().read_int64s("performance/" + name).at(0);
+    }
+
+    // Starts the run (or resumes it once a checkpoint exists), kills it with SIGKILL after a
+    // seeded random delay, `kills` times, then lets the last resume finish. Returns the kills
+    // that hit a running process.
+    int kill_loop(const std::string& scene, int kills, std::uint64_t seed) {
+        fs::create_directories(dir_ / "run");
+        const std::string out = path("run/r.h5"), log = path("run/log");
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> delay(0.1, 0.4);  // s; checkpoints every 0.05 s
+        int killed = 0;
+        for (int attempt = 0; attempt < 10 * kills; ++attempt) {
+            const bool resume = fs::exists(gran::checkpoint_path_for(out));
+            const std::vector<std::string> args =
+                resume ? std::vector<std::string>{"run", "--resume", out, "-q"}
+                       : std::vector<std::string>{"run", kScenes + scene, "-o", out, "-q"};
+            GranProcess p(args, log);
+            if (killed < kills && !p.wait_up_to(delay(rng))) {
+                p.send(SIGKILL);
+                EXPECT_TRUE(p.wait_up_to(60));
+                EXPECT_EQ(p.signal(), SIGKILL);
+                ++killed;
+                continue;
+            }
+            EXPECT_TRUE(p.wait_up_to(600)) << "the last resume did not finish";
+            EXPECT_EQ(p.exit_code(), 0) << read_text(log);
+            break;
+        }
+        EXPECT_FALSE(fs::exists(gran::checkpoint_path_for(out))) << "left behind after the end";
+        EXPECT_FALSE(fs::exists(out + ".frames.part")) << "left behind after the end";
+        return killed;
+    }
+
+    void expect_kill_loop_bit_identical(const std::string& scene, std::uint64_t seed) {
+        run_reference(scene);
+        if (HasFatalFailure()) return;
+        const int killed = kill_loop(scene, 20, seed);
+        EXPECT_EQ(killed, 20) << "the run ended before it was killed 20 times: lengthen " << scene;
+        expect_identical_to_reference();
+        EXPECT_GE(performance("resumes"), 1);
+        EXPECT_GE(performance("checkpoints"), performance("resumes"));
+    }
+};
+
+TEST_F(Checkpoint, ThermostatRunKilledTwentyTimesIsBitIdenticalOnTheEventDrivenEngine) {
+    expect_kill_loop_bit_identical("thermostat_event_driven.yaml", 1);
+}
+
+TEST_F(Checkpoint, VibratedRoughSpheresKilledTwentyTimesAreBitIdenticalOnTheEventDrivenEngine) {
+    expect_kill_loop_bit_identical("vibrated_rough_event_driven.yaml", 2);
+}
+
+TEST_F(Checkpoint, VibratedFrictionalBedKilledTwentyTimesIsBitIdenticalOnTheDemEngine) {
+    expect_kill_loop_bit_identical("vibrated_frictional_dem.yaml", 3);
+}
+
+// SIGTERM: the run writes its partial result (exit 3) and a checkpoint; the resume completes it.
+void interrupt_then_resume(const std::string& scene, const std::string& out, const std::string& log,
+                           double after) {
+    {
+        GranProcess p({"run", kScenes + scene, "-o", out, "-q"}, log);
+        ASSERT_FALSE(p.wait_up_to(after)) << "ended before the signal: " << read_text(log);
+        p.send(SIGTERM);
+        ASSERT_TRUE(p.wait_up_to(60));
+        ASSERT_EQ(p.exit_code(), 3) << read_text(log);
+    }
+    ASSERT_TRUE(fs::exists(gran::checkpoint_path_for(out)));
+    const auto r = run_gran({"run", "--resume", out, "-q"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+}
+
+TEST_F(Checkpoint, InterruptedRunWithThermalSawtoothAndStaticWallsResumesBitIdentically) {
+    run_reference("walls_event_driven.yaml");
+    fs::create_directories(dir_ / "run");
+    interrupt_then_resume("walls_event_driven.yaml", path("run/r.h5"), path("run/log"), 0.8);
+    expect_identical_to_reference();
+    EXPECT_EQ(performance("resumes"), 1);
+}
+
+TEST_F(Checkpoint, InterruptedFreeCoolingResumesBitIdentically) {
+    run_reference("free_cooling_event_driven.yaml");
+    fs::create_directories(dir_ / "run");
+    interrupt_then_resume("free_cooling_event_driven.yaml", path("run/r.h5"), path("run/log"), 0.5);
+    expect_identical_to_reference();
+}
+
+TEST_F(Checkpoint, ResumeRefusesAMissingCheckpointNamingIt) {
+    const auto r = run_gran({"run", "--resume", path("none.h5")});
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(path("none.h5.checkpoint") + ": no checkpoint to resume from"),
+              std::string::npos)
+        << r.output;
+}
+
+// A checkpoint of the thermostat scene, interrupted.
+class WrittenCheckpoint : public Checkpoint {
+  protected:
+    void SetUp() override {
+        Checkpoint::SetUp();
+        interrupt_then_resume_prefix();
+    }
+    void interrupt_then_resume_prefix() {
+        GranProcess p({"run", kScenes + "thermostat_event_driven.yaml", "-o", path("r.h5"), "-q"},
+                      path("log"));
+        ASSERT_FALSE(p.wait_up_to(0.6)) << read_text(path("log"));
+        p.send(SIGTERM);
+        ASSERT_TRUE(p.wait_up_to(60));
+        ASSERT_EQ(p.exit_code(), 3) << read_text(path("log"));
+        ckpt_ = gran::checkpoint_path_for(path("r.h5"));
+        ASSERT_TRUE(fs::exists(ckpt_));
+    }
+    std::string ckpt_;
+};
+
+TEST_F(WrittenCheckpoint, ResumeRefusesACheckpointOfAnotherCodeVersion) {
+    gran::Checkpoint c = gran::read_checkpoint(ckpt_);
+    c.header.code_id = "0.0.1+000000000000";
+    gran::write_checkpoint(ckpt_, c);
+    const auto r = run_gran({"run", "--resume", path("r.h5")});
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("written by gran 0.0.1+000000000000"), std::string::npos) << r.output;
+}
+
+TEST_F(WrittenCheckpoint, ResumeRefusesADamagedCheckpoint) {
+    std::string bytes = read_text(ckpt_);
+    bytes[bytes.size() / 2] = char(bytes[bytes.size() / 2] ^ 0x10);
+    std::ofstream(ckpt_, std::ios::binary) << bytes;
+    const auto r = run_gran({"run", "--resume", path("r.h5")});
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("damaged checkpoint"), std::string::npos) << r.output;
+}
+
+TEST_F(WrittenCheckpoint, ResumeRefusesAnotherSceneNamingTheDifference) {
+    const auto r = run_gran({"run", "--resume", path("r.h5"),
+                             kScenes + "thermostat_event_driven.yaml", "--set", "seed=8"});
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("the scene differs from the checkpoint's"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("seed: 7"), std::string::npos) << r.output;
+}
+
+TEST_F(WrittenCheckpoint, ResumeAcceptsTheSameSceneWithAnotherCheckpointInterval) {
+    const auto r =
+        run_gran({"run", "--resume", path("r.h5"), kScenes + "thermostat_event_driven.yaml",
+                  "--set", "run.checkpoint.interval=600", "-q"});
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_FALSE(fs::exists(ckpt_));
+}
+
+}  // namespace
