@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "libgran/core/build_info.hpp"
 #include "libgran/run/checkpoint.hpp"
 #include "libgran/run/run.hpp"
+#include "libgran/run/simulation.hpp"
 #include "libgran/scene/scene.hpp"
 #include "libgran/scene/scene_reference.hpp"
 #include "libgran/study/knob.hpp"
@@ -325,6 +327,34 @@ CLI::App* add_list(CLI::App& app, CommandLine& cl) {
     return list;
 }
 
+std::string human_time(double s) {
+    if (s < 120) return fmt::format("{:.2g} s", s);
+    if (s < 7200) return fmt::format("{:.2g} min", s / 60);
+    if (s < 2 * 86400) return fmt::format("{:.2g} h", s / 3600);
+    if (s < 2 * 365 * 86400) return fmt::format("{:.2g} days", s / 86400);
+    return fmt::format("{:.2g} years", s / (365.25 * 86400));
+}
+
+// `gran check`'s cost line: the engine's estimate of the work, and the time it takes at the rate
+// this scene runs at on this build (a short run of about 0.3 s, nothing written).
+void print_cost(const gran::Scene& scene) {
+    if (scene.cost_estimate.empty()) return;
+    gran::Simulation sim(scene);
+    const auto start = std::chrono::steady_clock::now();
+    double secs = 0;
+    for (std::uint64_t chunk = 256; secs < 0.3 && chunk < (std::uint64_t(1) << 40); chunk *= 2) {
+        if (sim.advance({.work = chunk}) != gran::Advance::Reached) break;
+        secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    std::cout << scene.cost_estimate;
+    if (secs > 0 && sim.work() > 0) {
+        const double rate = double(sim.work()) / secs;
+        std::cout << fmt::format("; about {} at the {:.3g} {}/s measured now",
+                                 human_time(scene.expected_work / rate), rate, sim.work_unit());
+    }
+    std::cout << "\n";
+}
+
 // The run's result and exit status: 0 completed, 1 stopped by the watchdog, 3 interrupted.
 int report_run(const gran::RunReport& rep) {
     print_headline(rep.summary);
@@ -377,12 +407,14 @@ int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
             std::cout << fmt::format("{}: ok ({}D, {} particles, packing fraction {:.4g})\n",
                                      cl.scene_file, scene.dimension, scene.species.total_count(),
                                      scene.packing_fraction);
+            print_cost(scene);
             return 0;
         }
         stop_on_signals();
         const gran::RunOptions opt = run_options(cl, argc, argv);
         spdlog::info("running {} ({}D, {} particles, packing fraction {:.4g})", cl.scene_file,
                      scene.dimension, scene.species.total_count(), scene.packing_fraction);
+        if (!scene.cost_estimate.empty()) spdlog::info("{}", scene.cost_estimate);
         return report_run(gran::run_scene(scene, opt));
     } catch (const gran::SceneError& e) {
         std::cerr << "gran: error: " << e.what() << "\n";

@@ -73,6 +73,7 @@ struct EngineDemands {
     };
     std::vector<Wall> walls;
     std::vector<std::size_t> kick_drivers;           // drivers with kick events
+    std::vector<double> first_kicks;                 // their first kick times (~ the interval)
     std::vector<std::size_t> collision_observables;  // observables asking for collision records
 };
 
@@ -82,6 +83,13 @@ struct EnginePlugin : PluginInfo {
     // at rest in rotation; the engine allocates them).
     bool thermal_initial_spin = true;
     std::function<void(const Scene&, const EngineDemands&)> check;
+    // Optional: the work a scene will take (in work units: events, steps) and a line saying so,
+    // for `gran check` (the check above refuses what could never finish).
+    struct Cost {
+        double work = 0;
+        std::string text;
+    };
+    std::function<Cost(const Scene&, const EngineDemands&)> estimate;
     std::function<std::unique_ptr<EngineRunner<2>>(const Scene&, DriverList<2>&,
                                                    ObservableList<2>&)>
         make2;

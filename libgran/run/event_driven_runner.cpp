@@ -9,6 +9,7 @@
 
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/plugins/engine.hpp"
+#include "libgran/run/event_driven_cost.hpp"
 #include "libgran/run/initial_state.hpp"
 #include "libgran/run/watchdog.hpp"
 
@@ -209,7 +210,8 @@ class EventDrivenRunner final : public EngineRunner<D> {
 };
 
 // Every contact needs a hard-particle form (a hard-sphere law, or a soft law's hard limit).
-void check_event_driven(const Scene& sc, const EngineDemands&) {
+void check_event_driven(const Scene& sc, const EngineDemands& demands) {
+    refuse_endless_run(sc, estimate_events(sc, demands));
     const ContactTable& c = sc.contacts;
     const auto& hard = c.law->hard_sphere;
     if (!hard) {
@@ -248,6 +250,10 @@ gravity makes micro-bounces of period 2 tc (docs/physics.md); the watchdog stops
 them.)md";
     p.binary_collisions = true;
     p.check = check_event_driven;
+    p.estimate = [](const Scene& sc, const EngineDemands& demands) {
+        const EventEstimate e = estimate_events(sc, demands);
+        return EnginePlugin::Cost{e.events(), describe(e)};
+    };
     set_runner<EventDrivenRunner>(p);
     return p;
 }());

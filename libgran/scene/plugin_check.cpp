@@ -56,7 +56,10 @@ void check_drivers(Scene& sc, EngineDemands& demands, std::vector<std::string>& 
                 partners.push_back(w.partner);
             }
         }
-        if (driver->next_kick() < kInf) demands.kick_drivers.push_back(k);
+        if (driver->next_kick() < kInf) {
+            demands.kick_drivers.push_back(k);
+            demands.first_kicks.push_back(driver->next_kick());
+        }
         if (driver->peak_velocity() > sc.info.peak_velocity) {
             sc.info.peak_velocity = driver->peak_velocity();
             sc.info.drive_period = driver->drive_period();
@@ -98,6 +101,11 @@ void check_plugins(Scene& sc, const YAML::Node& root, const Where& top, YAML::No
     sc.info.nominal_restitution = sc.contacts.nominal_restitution;
     check_observables<D>(sc, demands);
     sc.engine->check(sc, demands);
+    if (sc.engine->estimate) {
+        const EnginePlugin::Cost cost = sc.engine->estimate(sc, demands);
+        sc.expected_work = cost.work;
+        sc.cost_estimate = cost.text;
+    }
 }
 
 template void check_plugins<2>(Scene&, const YAML::Node&, const Where&, YAML::Node&);

@@ -57,6 +57,8 @@ struct Scene {
     std::size_t frames = 0;
     double progress_interval = 10;
     double checkpoint_interval = 300;   // run.checkpoint.interval: wall-clock s, 0: none
+    double expected_work = 0;           // the engine's estimate (events, steps; 0: none)
+    std::string cost_estimate;          // and the line `gran check` prints
     std::string box_location;           // "file:line:col: box" for errors found when placing
     std::string interactions_location;  // "file:line:col: interactions"
     // What plugin factories read (index 0; peak velocity and drive period from the drivers).
