@@ -12,7 +12,7 @@ DEB_PACKAGES := cmake g++ ninja-build pkg-config libeigen3-dev libboost-dev libh
 GRAN_WERROR ?= $(if $(CI),ON,OFF)
 CMAKE_FLAGS ?=
 
-.PHONY: deps configure build demo test docs validate bench format sanitize clean reproduce-barrat-trizac-2002 \
+.PHONY: fuzz deps configure build demo test docs validate bench format sanitize clean reproduce-barrat-trizac-2002 \
   reproduce-mcnamara-falcon-2005 reproduce-bhateja-2016 tradeoff
 
 deps:
@@ -97,6 +97,16 @@ format:
 
 sanitize:
 	$(MAKE) test BUILD_DIR=build-asan CMAKE_FLAGS="-DGRAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
+
+# Fuzzing campaign of the scene loader under ASan and UBSan (tests/fuzz/fuzz_scenes.cpp): mutants of
+# every scene of the project for FUZZ_SECONDS; failing inputs go to results/fuzz/. The in-suite
+# run (fixed seed, 20000 mutants) is SceneLoaderFuzz in `make test`.
+FUZZ_SECONDS ?= 600
+FUZZ_SEED ?= 1
+fuzz:
+	$(MAKE) build BUILD_DIR=build-asan CMAKE_FLAGS="-DGRAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
+	build-asan/tests/gran_fuzz_scenes --seconds $(FUZZ_SECONDS) --seed $(FUZZ_SEED) \
+	  --findings results/fuzz .
 
 clean:
 	rm -rf $(BUILD_DIR) build-asan

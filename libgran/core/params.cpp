@@ -251,6 +251,10 @@ Params read_params(const YAML::Node& node, const Schema& schema, const Where& wh
     if (node.IsMap()) {
         std::vector<std::string> seen;
         for (auto it = node.begin(); it != node.end(); ++it) {
+            if (!it->first.IsScalar()) {  // a YAML complex key (`? - a`): found by fuzzing
+                fail(where, it->first,
+                     fmt::format("expected a key name, got {}", shown(it->first)));
+            }
             const std::string key = it->first.as<std::string>();
             if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
                 fail(where.child(key), it->first, fmt::format("key '{}' is given twice", key));

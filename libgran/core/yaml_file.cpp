@@ -62,21 +62,21 @@ YAML::Node load_yaml_file(const std::string& path, const std::string& what) {
 
 YAML::Node parse_yaml_text(const std::string& text, const std::string& path,
                            const std::string& what) {
-    std::vector<YAML::Node> docs;
+    // A second document is found by its '---' marker, not by YAML::LoadAll: yaml-cpp 0.7's
+    // LoadAll loops forever on some text after a first document (found by fuzzing,
+    // tests/data/fuzz_corpus/loadall_hang.yaml); YAML::Load reads the first document only.
+    if (const std::size_t line = second_document_line(text)) {
+        throw SceneError(fmt::format(
+            "{}:{}: a second YAML document (after '---'); a {} holds exactly one, put it in "
+            "its own file",
+            path, line, what));
+    }
     try {
-        docs = YAML::LoadAll(text);
+        return YAML::Load(text);
     } catch (const YAML::ParserException& e) {
         throw SceneError(fmt::format("{}:{}:{}: YAML syntax error: {}", path, e.mark.line + 1,
                                      e.mark.column + 1, e.msg));
     }
-    if (docs.size() > 1) {
-        const std::size_t line = second_document_line(text);
-        throw SceneError(fmt::format(
-            "{}:{}: a second YAML document (after '---'); a {} holds exactly one, put it in "
-            "its own file",
-            path, line ? line : 1, what));
-    }
-    return docs.empty() ? YAML::Node() : docs.front();
 }
 
 }  // namespace gran

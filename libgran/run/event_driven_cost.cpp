@@ -102,7 +102,7 @@ void refuse_endless_run(const Scene& sc, const EventEstimate& e) {
         throw SceneError(fmt::format(
             "{}: {}; the gas is so dilute (packing fraction {:.3g}) that particles fly across "
             "cells for ages between collisions: raise box.packing_fraction (or shorten "
-            "box.lengths)",
+            "box.lengths), or shorten the run (run.measurement)",
             sc.box_location, what, sc.packing_fraction));
     }
     if (e.kick_updates >= e.collisions) {

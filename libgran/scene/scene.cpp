@@ -92,6 +92,14 @@ void read_box(const YAML::Node& root, const Where& top, Scene& sc, YAML::Node& r
     sc.packing_fraction = particle_volume / volume;
     const double dmax = sc.species.max_diameter();
     const std::string key = bp.has("lengths") ? "lengths" : "packing_fraction";
+    // Sizes near 1e300 overflow the volumes (found by fuzzing): no engine computes with them.
+    if (!std::isfinite(particle_volume) || !std::isfinite(volume) ||
+        !std::isfinite(sc.packing_fraction)) {
+        bp.fail(key, fmt::format("the box or the particles' volume overflows (box volume {:.4g}, "
+                                 "particle volume {:.4g}): choose units in which diameters and "
+                                 "box lengths are far from 1e300",
+                                 volume, particle_volume));
+    }
     for (int a = 0; a < d; ++a) {
         const double need = sc.periodic[a] ? 2 * dmax : dmax;
         if (sc.box_length[a] < need) {
