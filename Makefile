@@ -104,7 +104,8 @@ sanitize:
 FUZZ_SECONDS ?= 600
 FUZZ_SEED ?= 1
 fuzz:
-	$(MAKE) build BUILD_DIR=build-asan CMAKE_FLAGS="-DGRAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
+	$(MAKE) configure BUILD_DIR=build-asan CMAKE_FLAGS="-DGRAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
+	cmake --build build-asan -j $(JOBS) --target gran_fuzz_scenes
 	build-asan/tests/gran_fuzz_scenes --seconds $(FUZZ_SECONDS) --seed $(FUZZ_SEED) \
 	  --findings results/fuzz .
 
