@@ -87,13 +87,20 @@ int require_count(const Where& w, const YAML::Node& n, int lo) {
     fail(w, n, fmt::format("expected an integer >= {}", lo));
 }
 
+// A map key as a name: a YAML complex key (`? [a, b]`) is refused here, not left to escape as
+// yaml-cpp's "bad conversion" (found by fuzzing the scene loader).
+std::string key_name(const Where& w, const YAML::Node& key) {
+    if (!key.IsScalar()) fail(w, key, "expected a key name, got a list or a map");
+    return key.Scalar();
+}
+
 // Keys swept by a `grid` or `zip` section: key -> list of values.
 std::vector<std::pair<std::string, std::vector<YAML::Node>>> read_lists(const Where& w,
                                                                         const YAML::Node& n) {
     require_map(w, n, "a map from scene key to a list of values");
     std::vector<std::pair<std::string, std::vector<YAML::Node>>> out;
     for (auto it = n.begin(); it != n.end(); ++it) {
-        const std::string key = it->first.as<std::string>();
+        const std::string key = key_name(w, it->first);
         const Where wk = w.child(key);
         if (!it->second.IsSequence() || it->second.size() == 0)
             fail(wk, it->second, "expected a non-empty list of values for this scene key");
@@ -108,7 +115,7 @@ StudyTradeoff read_tradeoff(const Where& w, const YAML::Node& n) {
     require_map(w, n, "a trade-off: {reference, quantities, analytic, cost}");
     StudyTradeoff t;
     for (auto it = n.begin(); it != n.end(); ++it) {
-        const std::string k = it->first.as<std::string>();
+        const std::string k = key_name(w, it->first);
         const Where wk = w.child(k);
         const YAML::Node v = it->second;
         if (k == "reference") {
@@ -123,7 +130,7 @@ StudyTradeoff read_tradeoff(const Where& w, const YAML::Node& n) {
         } else if (k == "analytic") {
             require_map(wk, v, "a map from summary quantity to its exact value");
             for (auto a = v.begin(); a != v.end(); ++a) {
-                const std::string q = a->first.as<std::string>();
+                const std::string q = key_name(wk, a->first);
                 double x = 0;
                 try {
                     x = a->second.as<double>();
@@ -147,7 +154,7 @@ StudyFit read_fit(const Where& w, const YAML::Node& n) {
     require_map(w, n, "a fit: {name, x, y, group_by, tolerance}");
     StudyFit f;
     for (auto it = n.begin(); it != n.end(); ++it) {
-        const std::string k = it->first.as<std::string>();
+        const std::string k = key_name(w, it->first);
         const Where wk = w.child(k);
         if (k == "name") {
             f.name = safe_name(require_string(wk, it->second));
@@ -208,7 +215,7 @@ struct Sections {
 // One top-level key of the study file, into the study or the sections.
 void read_section(const Where& top, const YAML::Node& key, const YAML::Node& v,
                   const std::string& path, Study& st, Sections& sec) {
-    const std::string k = key.as<std::string>();
+    const std::string k = key_name(top, key);
     const Where w = top.child(k);
     if (k == "scene") {
         st.scene = (fs::path(path).parent_path() / require_string(w, v)).lexically_normal();
@@ -233,7 +240,7 @@ void read_section(const Where& top, const YAML::Node& key, const YAML::Node& v,
     } else if (k == "set") {
         require_map(w, v, "a map from scene key to value (applied to every run)");
         for (auto s = v.begin(); s != v.end(); ++s)
-            sec.base_sets.emplace_back(s->first.as<std::string>(), yaml_text(s->second));
+            sec.base_sets.emplace_back(key_name(w, s->first), yaml_text(s->second));
     } else if (k == "tradeoff") {
         st.has_tradeoff = true;
         st.tradeoff = read_tradeoff(w, v);
@@ -287,13 +294,13 @@ Point read_point(const Where& wp, const YAML::Node& pn, const Sets& base_sets) {
     require_map(wp, pn, "a point: {name: ..., set: {scene.key: value, ...}}");
     Point p{wp, pn, "", base_sets};
     for (auto it = pn.begin(); it != pn.end(); ++it) {
-        const std::string k = it->first.as<std::string>();
+        const std::string k = key_name(wp, it->first);
         if (k == "name") {
             p.name = require_string(wp.child(k), it->second);
         } else if (k == "set") {
             require_map(wp.child(k), it->second, "a map from scene key to value");
             for (auto s = it->second.begin(); s != it->second.end(); ++s) {
-                p.sets.emplace_back(s->first.as<std::string>(), yaml_text(s->second));
+                p.sets.emplace_back(key_name(wp.child(k), s->first), yaml_text(s->second));
             }
         } else {
             p.meta[k] = it->second;

@@ -239,3 +239,17 @@ TEST(PowerLawFit, SkipsNonPositivePointsAndNeedsTwo) {
 }
 
 }  // namespace
+
+namespace {
+
+// A YAML complex key (`? [a, b]`) where a name is expected is a study error at its line, not
+// yaml-cpp's "bad conversion" escaping (the scene loader's fuzzing found the same in scenes).
+TEST_F(Study, ComplexKeysAreRefusedAtTheirLine) {
+    EXPECT_NE(error_of("? [a, b]\n: 3\n").find("study.yaml:2:3: expected a key name"),
+              std::string::npos)
+        << error_of("? [a, b]\n: 3\n");
+    const std::string in_set = error_of("set:\n  ? [run.measurement]\n  : 10\n");
+    EXPECT_NE(in_set.find("study.yaml:3:5: set: expected a key name"), std::string::npos) << in_set;
+}
+
+}  // namespace
