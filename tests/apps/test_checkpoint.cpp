@@ -6,6 +6,7 @@
 // is in one of the scenes.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -31,13 +32,17 @@ class Checkpoint : public gran::testing::TempDirTest {
   protected:
     Checkpoint() : TempDirTest("gran_checkpoint") {}
 
-    // The uninterrupted run, without checkpoints, into ref/.
+    // The uninterrupted run, without checkpoints, into ref/; its wall-clock time in reference_s_.
     void run_reference(const std::string& scene) {
         fs::create_directories(dir_ / "ref");
+        const auto start = std::chrono::steady_clock::now();
         const auto r = run_gran({"run", kScenes + scene, "-o", path("ref/r.h5"), "-q", "--set",
                                  "run.checkpoint.interval=0"});
+        reference_s_ =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         ASSERT_EQ(r.exit_code, 0) << r.output;
     }
+    double reference_s_ = 0;
 
     // Bit identity of run/r.h5 and ref/r.h5: every dataset and attribute under /observables,
     // /drivers and /particles (tests/regression/compare_result_dirs.py).
@@ -57,12 +62,16 @@ class Checkpoint : public gran::testing::TempDirTest {
 
     // Starts the run (or resumes it once a checkpoint exists), kills it with SIGKILL after a
     // seeded random delay, `kills` times, then lets the last resume finish. Returns the kills
-    // that hit a running process.
+    // that hit a running process. The delays scale with the reference run's wall-clock time, so
+    // that the 20 sessions cover at most about two thirds of the run on a fast or a slow machine
+    // (each session makes less progress than its delay: start-up, and the work since its last
+    // checkpoint, checkpoints every 0.05 s).
     int kill_loop(const std::string& scene, int kills, std::uint64_t seed) {
         fs::create_directories(dir_ / "run");
         const std::string out = path("run/r.h5"), log = path("run/log");
         std::mt19937_64 rng(seed);
-        std::uniform_real_distribution<double> delay(0.1, 0.4);  // s; checkpoints every 0.05 s
+        std::uniform_real_distribution<double> delay(0.06 + 0.01 * reference_s_,
+                                                     0.06 + 0.05 * reference_s_);  // s
         int killed = 0;
         for (int attempt = 0; attempt < 10 * kills; ++attempt) {
             const bool resume = fs::exists(gran::checkpoint_path_for(out));
