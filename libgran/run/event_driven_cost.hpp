@@ -21,10 +21,17 @@ struct EventEstimate {
 
 // More events than this is a run that cannot finish: at 1e7 events per second, three years.
 inline constexpr double kMaxEvents = 1e15;
+// A gas so dilute that each collision costs over a million cell crossings (free flights across
+// the box between collisions, a Knudsen gas) is refused too when the run is long (over 1e12
+// events, a day at 1e7 events per second): the engine would spend it on bookkeeping. A packing
+// fraction of 1e-12 for 500 disks is 8e6 crossings per collision (docs/reliability.md).
+inline constexpr double kMaxCrossingsPerCollision = 1e6;
+inline constexpr double kLongRunEvents = 1e12;
 
 EventEstimate estimate_events(const Scene& sc, const EngineDemands& demands);
 
-// SceneError naming the key to change when the estimate exceeds kMaxEvents or is not finite.
+// SceneError naming the key to change when the estimate exceeds kMaxEvents or is not finite, or
+// when a long run is almost only cell crossings (kMaxCrossingsPerCollision).
 void refuse_endless_run(const Scene& sc, const EventEstimate& e);
 
 // One line for `gran check`.

@@ -63,5 +63,37 @@ run: {measurement: 100}
     }
 }
 
+// The vibrated demo's 500 disks at packing fraction 1e-12: about 8e6 cell crossings per collision
+// (a Knudsen gas), 4e13 events, weeks of work for 5e6 collisions. Refused naming the box; 1e-10
+// (8.6e5 crossings per collision, a few days) is still a run one may want.
+Scene vibrated_disks(const std::string& phi) {
+    return parse_scene(YAML::Load(R"(
+dimension: 2
+seed: 1
+particles: 500
+species: [{name: a, mass: 1, diameter: 1, number_fraction: 1}]
+interactions: {law: constant_restitution, alpha: 0.85}
+box: {packing_fraction: )" + phi + R"(, aspect: [1, 1], periodic: [true, false]}
+run: {unit: collisions_per_particle, equilibration: 100, measurement: 20000, sample_interval: 2}
+)"),
+                       "knudsen.yaml");
+}
+
+TEST(EventDrivenCost, KnudsenGasOfMillionsOfCellCrossingsPerCollisionIsRefusedNamingTheBox) {
+    const Scene ok = vibrated_disks("1.0e-10");
+    const EventEstimate e = estimate_events(ok, EngineDemands{});
+    EXPECT_LT(e.crossings, kMaxCrossingsPerCollision * e.collisions);
+    EXPECT_GT(e.events(), kLongRunEvents);  // long, yet accepted
+    try {
+        (void)vibrated_disks("1.0e-12");
+        FAIL() << "a packing fraction of 1e-12 was accepted";
+    } catch (const SceneError& err) {
+        const std::string what = err.what();
+        EXPECT_NE(what.find("knudsen.yaml:7"), std::string::npos) << what;
+        EXPECT_NE(what.find("cell crossings per collision"), std::string::npos) << what;
+        EXPECT_NE(what.find("raise box.packing_fraction"), std::string::npos) << what;
+    }
+}
+
 }  // namespace
 }  // namespace gran
