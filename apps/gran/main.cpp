@@ -81,6 +81,10 @@ given beside it must resolve to the same one (the checkpoint interval may differ
 written by another code version, for another scene, damaged or missing is refused (exit 2). See
 [reliability.md](reliability.md).
 
+`gran run --recover OUT.h5`: writes what a killed run had measured up to its last checkpoint to
+`OUT.h5` (status `interrupted`, exit 3) without running; the checkpoint is kept, so
+`gran run --resume OUT.h5` still continues the run, bit for bit.
+
 `gran check SCENE.yaml [--set ...]`: every check `gran run` makes (the contacts, what the engine can
 do, the drivers' and observables' cross-references, the initial placement), without running.
 
@@ -236,7 +240,7 @@ struct CommandLine {
     std::string log_level = "info";
     bool quiet = false;
     // run, check
-    std::string scene_file, output, resume;
+    std::string scene_file, output, resume, recover;
     std::vector<std::string> sets;
     // study (jobs: tradeoff too)
     std::string study_file, study_out;
@@ -264,6 +268,11 @@ CLI::App* add_run(CLI::App& app, CommandLine& cl) {
                     "continue the run to OUT.h5 from its checkpoint OUT.h5.checkpoint; the result "
                     "is bit for bit that of an uninterrupted run")
         ->excludes(output);
+    run->add_option("--recover", cl.recover,
+                    "write what the run to OUT.h5 had measured at its last checkpoint (status "
+                    "interrupted) without running; --resume can still continue it")
+        ->excludes(output)
+        ->excludes("--resume");
     run->fallthrough();
     return run;
 }
@@ -373,9 +382,11 @@ int report_run(const gran::RunReport& rep) {
 
 gran::RunOptions run_options(const CommandLine& cl, int argc, char** argv) {
     gran::RunOptions opt;
-    opt.output = !cl.resume.empty()  ? cl.resume
-                 : cl.output.empty() ? default_output(cl.scene_file)
-                                     : cl.output;
+    opt.output = !cl.resume.empty()    ? cl.resume
+                 : !cl.recover.empty() ? cl.recover
+                 : cl.output.empty()   ? default_output(cl.scene_file)
+                                       : cl.output;
+    opt.recover_only = !cl.recover.empty();
     opt.progress = !cl.quiet;
     opt.terminal = isatty(STDERR_FILENO) != 0;
     opt.command_line.assign(argv, argv + argc);
@@ -383,7 +394,8 @@ gran::RunOptions run_options(const CommandLine& cl, int argc, char** argv) {
     return opt;
 }
 
-// `gran run --resume OUT.h5 [SCENE.yaml]`: the scene, if given, must be the checkpoint's.
+// `gran run --resume OUT.h5 [SCENE.yaml]` (or --recover): the scene, if given, must be the
+// checkpoint's.
 int cmd_resume(const CommandLine& cl, int argc, char** argv) {
     std::optional<gran::Scene> given;
     if (!cl.scene_file.empty()) given = gran::load_scene(cl.scene_file, cl.sets);
@@ -391,14 +403,16 @@ int cmd_resume(const CommandLine& cl, int argc, char** argv) {
         throw gran::SceneError("gran run --resume: --set needs the scene file it changes");
     stop_on_signals();
     const gran::RunOptions opt = run_options(cl, argc, argv);
-    spdlog::info("resuming {} from {}", opt.output, gran::checkpoint_path_for(opt.output));
+    spdlog::info("{} {} from {}", opt.recover_only ? "recovering" : "resuming", opt.output,
+                 gran::checkpoint_path_for(opt.output));
     return report_run(gran::resume_run(opt, given ? &*given : nullptr));
 }
 
 // `gran run` and `gran check` (check_only).
 int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
     try {
-        if (!check_only && !cl.resume.empty()) return cmd_resume(cl, argc, argv);
+        if (!check_only && (!cl.resume.empty() || !cl.recover.empty()))
+            return cmd_resume(cl, argc, argv);
         if (cl.scene_file.empty())
             throw gran::SceneError("gran run: give a scene file, or --resume OUT.h5");
         gran::Scene scene = gran::load_scene(cl.scene_file, cl.sets);

@@ -89,6 +89,12 @@ class ScheduleLoop {
         progress_.finish();
         return std::move(out_);
     }
+    // The outcome of a run stopped where it stands (a loaded checkpoint's state), without a new
+    // checkpoint: `gran run --recover`.
+    ScheduleOutcome stop_here() {
+        out_.interrupted = true;
+        return std::move(out_);
+    }
     // Wall-clock and CPU seconds of the whole run (earlier sessions of a resumed run included).
     double elapsed() const { return prior_wall_ + progress_.elapsed(); }
     double cpu() const { return prior_cpu_ + double(std::clock()) / CLOCKS_PER_SEC - cpu0_; }
@@ -338,14 +344,18 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     // .part file and never touches an earlier result.
     ResultSink sink(opt.output);
     write_provenance(sink.root(), sc, opt.command_line);
-    const ScheduleOutcome out = loop.run();
+    const ScheduleOutcome out = opt.recover_only ? loop.stop_here() : loop.run();
     RunTotals totals;
     totals.wall_time = loop.elapsed();
     totals.cpu_time = loop.cpu();
     totals.checkpoints = loop.checkpoints();
     totals.checkpoint_time = loop.checkpoint_seconds();
     totals.resumes = loop.resumes();
-    if (out.interrupted) spdlog::warn("interrupted: writing what was measured so far");
+    if (opt.recover_only) {
+        spdlog::info("writing what was measured up to the checkpoint");
+    } else if (out.interrupted) {
+        spdlog::warn("interrupted: writing what was measured so far");
+    }
     if (!out.watchdog_stop.empty()) spdlog::warn("watchdog: writing what was measured so far");
     const std::size_t n = runner.view().particles().size();
     totals.final_time = runner.now();

@@ -15,6 +15,9 @@ struct RunOptions {
     bool terminal = false;  // redraw a progress line (stderr is a terminal)
     std::vector<std::string> command_line;
     const std::atomic<bool>* interrupt = nullptr;
+    // Resuming: write the result from the checkpoint's state as an interrupted run, without
+    // running (`gran run --recover`); the checkpoint is kept for a later --resume.
+    bool recover_only = false;
 };
 
 struct RunReport {
@@ -37,6 +40,9 @@ RunReport run_scene(const Scene& scene, const RunOptions& options);
 // one an uninterrupted run gives. The scene comes from the checkpoint; `given` (optional) must
 // resolve to the same scene. CheckpointError (libgran/run/checkpoint.hpp) when there is no
 // usable checkpoint, or it was written by other code or for another scene.
+// With options.recover_only, writes the data measured up to the checkpoint (status
+// `interrupted`) and keeps the checkpoint: what a killed run had measured, readable without
+// continuing it.
 RunReport resume_run(const RunOptions& options, const Scene* given = nullptr);
 
 }  // namespace gran

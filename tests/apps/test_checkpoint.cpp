@@ -6,6 +6,7 @@
 // is in one of the scenes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -145,6 +146,42 @@ TEST_F(Checkpoint, InterruptedFreeCoolingResumesBitIdentically) {
     run_reference("free_cooling_event_driven.yaml");
     fs::create_directories(dir_ / "run");
     interrupt_then_resume("free_cooling_event_driven.yaml", path("run/r.h5"), path("run/log"), 0.5);
+    expect_identical_to_reference();
+}
+
+// SIGKILL leaves no result, only the checkpoint: --recover writes what was measured up to it
+// (the uninterrupted run's first samples, bit for bit) without running, keeps the checkpoint,
+// and --resume still completes the run bit-identically.
+TEST_F(Checkpoint, KilledRunIsRecoveredUpToItsCheckpointAndStillResumesBitIdentically) {
+    run_reference("thermostat_event_driven.yaml");
+    if (HasFatalFailure()) return;
+    fs::create_directories(dir_ / "run");
+    const std::string out = path("run/r.h5");
+    {
+        GranProcess p({"run", kScenes + "thermostat_event_driven.yaml", "-o", out, "-q"},
+                      path("run/log"));
+        ASSERT_FALSE(p.wait_up_to(0.1 + 0.4 * reference_s_)) << read_text(path("run/log"));
+        p.send(SIGKILL);
+        ASSERT_TRUE(p.wait_up_to(60));
+    }
+    ASSERT_FALSE(fs::exists(out));
+    const auto rec = run_gran({"run", "--recover", out, "-q"});
+    ASSERT_EQ(rec.exit_code, 3) << rec.output;
+    EXPECT_NE(read_text(path("run/r.summary.yaml")).find("status: interrupted"), std::string::npos);
+    EXPECT_TRUE(fs::exists(gran::checkpoint_path_for(out))) << "recover must keep the checkpoint";
+    {
+        const auto got = gran::h5::File::open_read(out).root();
+        const auto ref = gran::h5::File::open_read(path("ref/r.h5")).root();
+        const std::int64_t samples = got.read_int64s("performance/samples").at(0);
+        EXPECT_GT(samples, 0) << "killed before the first measurement sample: kill later";
+        EXPECT_LT(samples, ref.read_int64s("performance/samples").at(0));
+        const auto e = got.read_doubles("observables/kinetic_energy/energy_per_particle");
+        const auto e_ref = ref.read_doubles("observables/kinetic_energy/energy_per_particle");
+        ASSERT_EQ(e.size(), std::size_t(50 + samples));  // 100 / 2 equilibration samples
+        EXPECT_TRUE(std::equal(e.begin(), e.end(), e_ref.begin()));
+    }
+    const auto r = run_gran({"run", "--resume", out, "-q"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
     expect_identical_to_reference();
 }
 
