@@ -7,13 +7,17 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <stop_token>
+#include <thread>
 
 #include "libgran/core/build_info.hpp"
 #include "libgran/run/checkpoint.hpp"
@@ -348,7 +352,17 @@ std::string human_time(double s) {
 // this scene runs at on this build (a short run of about 0.3 s, nothing written).
 void print_cost(const gran::Scene& scene) {
     if (scene.cost_estimate.empty()) return;
-    gran::Simulation sim(scene);
+    // A bound on the measurement whatever the scene does (work that is never counted must not
+    // hang `gran check`): the engines see the flag within 1024 events, a step or a kick.
+    std::atomic<bool> enough{false};
+    std::mutex m;
+    std::condition_variable_any cv;
+    const std::jthread timer([&](const std::stop_token& st) {
+        std::unique_lock lock(m);
+        cv.wait_for(lock, st, std::chrono::seconds(2), [] { return false; });
+        enough = true;
+    });
+    gran::Simulation sim(scene, &enough);
     const auto start = std::chrono::steady_clock::now();
     double secs = 0;
     for (std::uint64_t chunk = 256; secs < 0.3 && chunk < (std::uint64_t(1) << 40); chunk *= 2) {

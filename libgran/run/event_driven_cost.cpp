@@ -33,10 +33,12 @@ double collision_frequency(const Scene& sc) {
     double omega = 0;
     for (std::size_t a = 0; a < t.size(); ++a) {
         for (std::size_t b = 0; b < t.size(); ++b) {
+            // The partners of a particle of species a: the others (a lone particle has none, and
+            // a schedule in collisions per particle never ends: refused as an endless run).
+            const double partners = double(t.species[b].count) - (a == b ? 1.0 : 0.0);
             omega += x[a] * theory::enskog_pair_collision_frequency(
-                                sc.dimension, double(t.species[b].count) / volume,
-                                0.5 * (sigma[a] + sigma[b]), chi[a * t.size() + b], T,
-                                t.species[a].mass, T, t.species[b].mass);
+                                sc.dimension, partners / volume, 0.5 * (sigma[a] + sigma[b]),
+                                chi[a * t.size() + b], T, t.species[a].mass, T, t.species[b].mass);
         }
     }
     return omega;
@@ -101,6 +103,13 @@ bool crossings_swamp_collisions(const EventEstimate& e) {
 }  // namespace
 
 void refuse_endless_run(const Scene& sc, const EventEstimate& e) {
+    if (sc.schedule.unit != ScheduleUnit::Time && !(e.simulated_time < kInf)) {
+        sc.run_settings.fail(
+            "unit", fmt::format("kinetic theory gives no collisions ({} particles at temperature "
+                                "{:g}): a schedule in collisions per particle would never end; use "
+                                "run.unit: time",
+                                sc.species.total_count(), sc.temperature));
+    }
     const double events = e.events();
     const bool dilute = crossings_swamp_collisions(e);
     if (events <= kMaxEvents && !dilute) return;  // NaN and inf fail the first test too
