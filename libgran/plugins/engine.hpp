@@ -18,6 +18,7 @@
 #include "libgran/plugins/driver.hpp"
 #include "libgran/plugins/engine_view.hpp"
 #include "libgran/plugins/observable.hpp"
+#include "libgran/plugins/run_cost.hpp"
 #include "libgran/run/result_sink.hpp"
 
 namespace gran {
@@ -83,13 +84,9 @@ struct EnginePlugin : PluginInfo {
     // at rest in rotation; the engine allocates them).
     bool thermal_initial_spin = true;
     std::function<void(const Scene&, const EngineDemands&)> check;
-    // Optional: the work a scene will take (in work units: events, steps) and a line saying so,
-    // for `gran check` (the check above refuses what could never finish).
-    struct Cost {
-        double work = 0;
-        std::string text;
-    };
-    std::function<Cost(const Scene&, const EngineDemands&)> estimate;
+    // Optional: the work a scene will take and a line saying so, for `gran check` (the check above
+    // refuses what could never finish).
+    std::function<RunCost(const Scene&, const EngineDemands&)> estimate;
     std::function<std::unique_ptr<EngineRunner<2>>(const Scene&, DriverList<2>&,
                                                    ObservableList<2>&)>
         make2;

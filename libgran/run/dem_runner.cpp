@@ -1,7 +1,8 @@
 // The soft-sphere DEM engine as an engine plugin (`engine.type: dem`): its numerical settings, its
 // checks at load (a soft-contact law, a schedule in time, walls with positions, no kicks, no
-// binary collision records, a time step every contact resolves), and its runner: whole time steps
-// to each sample, watchdog windows of steps, and what its contacts achieve in isolated collisions.
+// binary collision records, a time step every contact resolves, a cost that can be paid:
+// libgran/run/dem_cost.hpp), and its runner: whole time steps to each sample, watchdog windows of
+// steps, and what its contacts achieve in isolated collisions.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -11,15 +12,13 @@
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/engines/dem/probe.hpp"
 #include "libgran/plugins/engine.hpp"
+#include "libgran/run/dem_cost.hpp"
 #include "libgran/run/initial_state.hpp"
 #include "libgran/run/watchdog.hpp"
 
 namespace gran {
 
 namespace {
-
-// More steps than any run can take (1e14 steps of one particle: ~100 days at 1e7 steps/s).
-constexpr double kMaxDemSteps = 1e14;
 
 template <int D>
 class DemView final : public EngineView<D> {
@@ -56,10 +55,6 @@ DemSettings dem_settings(const Scene& sc) {
 double probe_speed(const Scene& sc) {
     const double v = sc.engine_settings.params.real("probe_speed");
     return v > 0 ? v : std::sqrt(sc.temperature / sc.species.min_mass());
-}
-
-bool bounded(const Scene& sc) {
-    return std::any_of(sc.periodic.begin(), sc.periodic.end(), [](bool p) { return !p; });
 }
 
 // Whole time steps up to each sample; walls from the drivers' wall descriptions.
@@ -266,25 +261,17 @@ void check_dem(const Scene& sc, const EngineDemands& demands) {
     }
     check_demands(sc, demands);
     if (!sc.contacts.law->soft_contact) check_contacts(sc, 0);
-    double dt = 0;
+    DemEstimate cost;
     try {
-        dt = dem_time_step(sc.contacts, bounded(sc), ep.real("dt"), ep.real("dt_fraction"));
+        cost = estimate_particle_steps(sc);
     } catch (const std::invalid_argument& e) {
         ep.fail("dt", e.what());
     }
-    check_contacts(sc, dt);
+    check_contacts(sc, cost.dt);
     check_cutoff(sc);
-    // A time step so short that the schedule cannot be stepped through in any run time (e.g.
-    // springs stiff enough to make t_c ~ 1e-150): refused rather than left to "hang".
-    const double steps = (sc.schedule.equilibration + sc.schedule.measurement) / dt;
-    if (steps > kMaxDemSteps) {
-        ep.fail("dt", fmt::format("dt = {:.4g} would need {:.3g} steps for the run's {:g} time "
-                                  "units (more than {:g}: months of computing even for one "
-                                  "grain): lower the contacts' stiffness (or raise their "
-                                  "contact_time) in `interactions`, or shorten the run",
-                                  dt, steps, sc.schedule.equilibration + sc.schedule.measurement,
-                                  kMaxDemSteps));
-    }
+    // A run that cannot be stepped through in any run time (e.g. springs stiff enough to make
+    // t_c ~ 1e-150): refused rather than left to "hang".
+    refuse_endless_run(sc, cost);
 }
 
 const bool registered = EngineRegistry::instance().add([] {
@@ -311,7 +298,8 @@ velocity Verlet, Verlet neighbour lists, the contact forces of a soft-contact la
 every contact: `linear_dashpot`, `cundall_strack`, `hertz_mindlin`). The schedule must be in time
 (`run.unit: time`). The time step is `dt`, or `dt_fraction` times the shortest contact duration
 over grain-grain and grain-wall contacts; above a fifth of it is refused (velocity Verlet needs
-5 steps per contact). Walls need a position: a `vibrating_wall` `sawtooth` is the real sawtooth
+5 steps per contact). A run costs particles x simulated time / dt particle-steps (`gran check`
+prints it); more than 10^15 is refused, naming the key to change. Walls need a position: a `vibrating_wall` `sawtooth` is the real sawtooth
 ramp; the sawtooth limit, thermal walls and the thermostat's kicks are refused with the reason, as
 are observables that need binary collision records (`restitution_statistics`; `profiles` skips its
 collisional pressure). A collision counted by `collision_statistics` is a contact that formed.
@@ -326,6 +314,9 @@ contact time an isolated head-on collision achieves on the engine itself at this
     // Rough grains start at rest in rotation (the beds of Bhateja et al. 2016 start from rest).
     p.thermal_initial_spin = false;
     p.check = check_dem;
+    p.estimate = [](const Scene& sc, const EngineDemands&) {
+        return run_cost(estimate_particle_steps(sc));
+    };
     set_runner<DemRunner>(p);
     return p;
 }());

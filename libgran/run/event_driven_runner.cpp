@@ -259,7 +259,7 @@ them.)md";
     p.check = check_event_driven;
     p.estimate = [](const Scene& sc, const EngineDemands& demands) {
         const EventEstimate e = estimate_events(sc, demands);
-        return EnginePlugin::Cost{e.events(), describe(e)};
+        return RunCost{e.events(), "events", 1, describe(e)};
     };
     set_runner<EventDrivenRunner>(p);
     return p;

@@ -101,11 +101,7 @@ void check_plugins(Scene& sc, const YAML::Node& root, const Where& top, YAML::No
     sc.info.nominal_restitution = sc.contacts.nominal_restitution;
     check_observables<D>(sc, demands);
     sc.engine->check(sc, demands);
-    if (sc.engine->estimate) {
-        const EnginePlugin::Cost cost = sc.engine->estimate(sc, demands);
-        sc.expected_work = cost.work;
-        sc.cost_estimate = cost.text;
-    }
+    if (sc.engine->estimate) sc.cost = sc.engine->estimate(sc, demands);
 }
 
 template void check_plugins<2>(Scene&, const YAML::Node&, const Where&, YAML::Node&);

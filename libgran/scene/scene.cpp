@@ -244,6 +244,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
         tp.fail("particles", fmt::format("species counts add up to {}, not to particles = {}",
                                          sc.species.total_count(), tp.integer("particles")));
     }
+    sc.species_location = locate(top.child("species"), child(root, "species"));
     res["particles"] = sc.species.total_count();
     res["species"] = rs;
     res["interactions"] = YAML::Node(YAML::NodeType::Map);  // keeps its place; filled below

@@ -14,6 +14,7 @@
 #include "libgran/core/params.hpp"
 #include "libgran/core/species.hpp"
 #include "libgran/plugins/law.hpp"
+#include "libgran/plugins/run_cost.hpp"
 #include "libgran/plugins/scene_info.hpp"
 #include "libgran/scene/schedule.hpp"
 
@@ -57,9 +58,9 @@ struct Scene {
     std::size_t frames = 0;
     double progress_interval = 10;
     double checkpoint_interval = 300;   // run.checkpoint.interval: wall-clock s, 0: none
-    double expected_work = 0;           // the engine's estimate (events, steps; 0: none)
-    std::string cost_estimate;          // and the line `gran check` prints
+    RunCost cost;                       // the engine's estimate (work 0: none)
     std::string box_location;           // "file:line:col: box" for errors found when placing
+    std::string species_location;       // "file:line:col: species"
     std::string interactions_location;  // "file:line:col: interactions"
     // What plugin factories read (index 0; peak velocity and drive period from the drivers).
     SceneInfo info;

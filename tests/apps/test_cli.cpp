@@ -178,6 +178,39 @@ TEST_F(GoodScene, CheckAcceptsTheDemoScene) {
     EXPECT_NE(o.output.find(kDemo + ": ok (2D, "), std::string::npos) << o.output;
 }
 
+// `gran check` prints the engine's cost estimate and how long it takes at the rate measured on
+// this build, in the engine's unit of work.
+TEST_F(GoodScene, CheckPrintsTheEventDrivenCostInEventsAtTheMeasuredRate) {
+    const Outcome o = run_gran(concat({"check", kDemo}, kShortDemo));
+    ASSERT_FALSE(o.signaled) << o.output;
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("expected cost: about "), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find(" events/s measured now"), std::string::npos) << o.output;
+}
+
+TEST_F(GoodScene, CheckPrintsTheDemCostInParticleStepsAtTheMeasuredRate) {
+    // 40 grains over 150 + 600 time units: particle-steps = 40 x 750 / dt.
+    const std::string scene =
+        std::string(GRAN_SOURCE_DIR) + "/studies/bhateja-2016/canonical-2d.yaml";
+    const Outcome o = run_gran({"check", scene});
+    ASSERT_FALSE(o.signaled) << o.output;
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    const std::size_t at = o.output.find("expected cost: about ");
+    ASSERT_NE(at, std::string::npos) << o.output;
+    double work = 0, steps = 0, dt = 0;
+    int particles = 0;
+    ASSERT_EQ(std::sscanf(o.output.c_str() + at,
+                          "expected cost: about %lf particle-steps (%d particles x %lf steps of "
+                          "dt = %lf,",
+                          &work, &particles, &steps, &dt),
+              4)
+        << o.output;
+    EXPECT_EQ(particles, 40);
+    EXPECT_NEAR(steps * dt / 750, 1.0, 0.05) << o.output;  // printed to 2 and 3 digits
+    EXPECT_NEAR(work / (40 * 750 / dt), 1.0, 0.05) << o.output;
+    EXPECT_NE(o.output.find(" particle-steps/s measured now"), std::string::npos) << o.output;
+}
+
 TEST_F(Run, SameSceneAndSeedGiveIdenticalResults) {
     const std::string a = path("a.h5"), b = path("b.h5"), c = path("c.h5");
     for (const auto& [out, seed] : {std::pair{a, "7"}, std::pair{b, "7"}, std::pair{c, "8"}}) {

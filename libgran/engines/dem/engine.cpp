@@ -23,10 +23,9 @@ std::string num(double x) {
 
 }  // namespace
 
-double dem_time_step(const ContactTable& contacts, bool walls, double dt, double dt_fraction) {
+double shortest_contact_duration(const ContactTable& contacts, bool walls) {
     const auto& soft = contacts.law->soft_contact;
     if (!soft) fail("law '" + contacts.law->name + "' has no soft-contact form");
-    // Verlet resolves a contact with at least a few steps; t_c / 5 is the limit.
     double tc = kInf;
     const std::size_t ns = contacts.species;
     for (std::size_t k = 0; k < ns * ns; ++k) tc = std::min(tc, soft->duration(*contacts.table, k));
@@ -36,6 +35,12 @@ double dem_time_step(const ContactTable& contacts, bool walls, double dt, double
                 tc = std::min(tc, soft->duration(*contacts.table, contacts.wall_index(w, s)));
         }
     }
+    return tc;
+}
+
+double dem_time_step(const ContactTable& contacts, bool walls, double dt, double dt_fraction) {
+    // Verlet resolves a contact with at least a few steps; t_c / 5 is the limit.
+    const double tc = shortest_contact_duration(contacts, walls);
     const double step = dt > 0 ? dt : dt_fraction * tc;
     if (!(step > 0) || !std::isfinite(step)) fail("the time step must be finite and > 0");
     if (step > tc / 5) {

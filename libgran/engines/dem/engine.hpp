@@ -80,6 +80,11 @@ struct DemLawLoops {
     double (DemEngine<D>::*elastic_energy)() const = nullptr;
 };
 
+// The shortest contact duration t_c of the soft-contact law over the grain-grain contacts, and the
+// grain-wall ones when `walls`: what the time step must resolve. Throws std::invalid_argument when
+// the law has no soft-contact form.
+double shortest_contact_duration(const ContactTable& contacts, bool walls);
+
 // The time step of a scene: `dt` if > 0, else dt_fraction x the shortest contact duration (over
 // the grain-grain contacts, and the grain-wall ones when `walls`). Throws std::invalid_argument
 // when it exceeds t_c / 5 or is not finite.
