@@ -29,7 +29,8 @@ double dem_time_step(const ContactTable& contacts, bool walls, double dt, double
     // Verlet resolves a contact with at least a few steps; t_c / 5 is the limit.
     double tc = kInf;
     const std::size_t ns = contacts.species;
-    for (std::size_t k = 0; k < ns * ns; ++k) tc = std::min(tc, soft->duration(*contacts.table, k));
+    for (std::size_t k = 0; k < contacts.pair_contacts(); ++k)
+        tc = std::min(tc, soft->duration(*contacts.table, k));
     if (walls) {
         for (std::size_t w = 0; w < contacts.walls.size(); ++w) {
             for (std::size_t s = 0; s < ns; ++s)

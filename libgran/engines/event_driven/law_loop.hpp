@@ -93,7 +93,7 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
     const double dist = dr.norm();
     const Vec<D> n = dr / dist;
     if (dist < sigma_pair_[pij] * (1.0 - 1e-10)) ++counters_.overlap_collisions;
-    const typename L::Pair& law = contacts_.template contacts<L>()[pij];
+    const typename L::Pair& law = contacts_.template contacts<L>()[contacts_.pair_index(si, sj)];
     double alpha;
     if constexpr (L::impact_dependent) {
         // r(v) laws take the normal relative speed at impact (McNamara & Falcon 2005, Eq. 1).
