@@ -28,14 +28,14 @@ double collision_frequency(const Scene& sc) {
         x.push_back(double(s.count) / n_total);
     }
     const double phi = std::min(sc.packing_fraction, 0.5);  // a rate, not the packing's limit
-    const auto chi = theory::contact_values_mixture(sc.dimension, phi, sigma, x);
+    const theory::MixtureContactValues chi(sc.dimension, phi, sigma, x);
     const double T = sc.temperature;
     double omega = 0;
     for (std::size_t a = 0; a < t.size(); ++a) {
         for (std::size_t b = 0; b < t.size(); ++b) {
             omega += x[a] * theory::enskog_pair_collision_frequency(
                                 sc.dimension, double(t.species[b].count) / volume,
-                                0.5 * (sigma[a] + sigma[b]), chi[a * t.size() + b], T,
+                                0.5 * (sigma[a] + sigma[b]), chi(sigma[a], sigma[b]), T,
                                 t.species[a].mass, T, t.species[b].mass);
         }
     }
