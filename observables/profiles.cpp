@@ -383,7 +383,8 @@ Barrat & Trizac 2002 for axis y. Every profile has an `_error` array (jackknife 
 `eos/P_ideal`, `eos/P_enskog` and `eos/P_ideal_yy`, `eos/P_enskog_yy` (for axis y) give the
 pressure predicted by the equation of state, Eq. (4) of the paper (Eq. (7) for one species), from
 the local densities and the total or axial temperatures, without and with the Enskog collisional
-part (contact values of Henderson / Carnahan–Starling type).
+part (contact values of Henderson / Carnahan–Starling type). The Enskog part takes a species-pair
+matrix per slab when written: memory and time grow with the square of the number of species.
 
 With `pressure` it measures the diagonal pressure tensor `pressure/P_xx`, `P_yy` (, `P_zz`): the
 kinetic part plus the collisional (virial) momentum flux shared among the slabs crossed by each
