@@ -109,7 +109,7 @@ class StochasticThermostat final : public Driver<D> {
             x.push_back(double(s.count) / n_total);
             phi += double(s.count) * theory::unit_ball_volume(D) * std::pow(s.diameter, D) / volume;
         }
-        const auto chi = theory::contact_values_mixture(D, phi, sigma, x);
+        const theory::MixtureContactValues chi(D, phi, sigma, x);
         double omega = 0;  // mean collision frequency per particle
         const double T = info.initial_temperature;
         for (std::size_t a = 0; a < t.size(); ++a) {
@@ -117,7 +117,7 @@ class StochasticThermostat final : public Driver<D> {
                 const double sab = 0.5 * (sigma[a] + sigma[b]);
                 omega +=
                     x[a] * theory::enskog_pair_collision_frequency(
-                               D, double(t.species[b].count) / volume, sab, chi[a * t.size() + b],
+                               D, double(t.species[b].count) / volume, sab, chi(sigma[a], sigma[b]),
                                T, t.species[a].mass, T, t.species[b].mass);
             }
         }

@@ -97,7 +97,9 @@ const char* const kDescription =
     R"md(
 Collision frequency per particle, per species pair (as seen by one particle of each species), counts
 and wall hits. On the dem engine a collision is a contact that formed, counted in total only (no
-per-pair frequencies).)md";
+per-pair frequencies). Its memory and time per sample grow with the square of the number of species
+S (a series per species pair: S = 10^4 is 5 10^7 pairs); the engine itself counts only the pairs
+that collided beyond 1024 species.)md";
 
 const bool registered = register_plugin<Observable, CollisionStatistics>(
     "collision_statistics", "collision counts and frequencies per particle and per species pair",

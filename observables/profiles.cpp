@@ -24,7 +24,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
   public:
     Profiles(const Params& p, const SceneInfo& info)
         : table_(*info.species),
-          nominal_restitution_(info.nominal_restitution),
+          info_(info),
           bins_(static_cast<std::size_t>(p.integer("bins"))),
           nblocks_(static_cast<std::size_t>(p.integer("blocks"))),
           window_(p.real("middle_window")) {
@@ -303,7 +303,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
             chi = theory::contact_values_mixture(D, phi, sigma, x);
             for (std::size_t i = 0; i < ns; ++i) {
                 for (std::size_t j = 0; j < ns; ++j)
-                    alpha[i * ns + j] = nominal_restitution_[i * ns + j];
+                    alpha[i * ns + j] = info_.nominal_restitution_of(i, j);
             }
         }
         return theory::enskog_pressure(D, n, T, m, sigma, alpha, chi);
@@ -354,7 +354,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
     }
 
     const SpeciesTable& table_;
-    std::vector<double> nominal_restitution_;  // per species pair, for the Enskog pressure
+    SceneInfo info_;  // the nominal restitution of each species pair, for the Enskog pressure
     std::size_t bins_, nblocks_;
     double window_;
     int axis_ = 1;
@@ -383,7 +383,8 @@ Barrat & Trizac 2002 for axis y. Every profile has an `_error` array (jackknife 
 `eos/P_ideal`, `eos/P_enskog` and `eos/P_ideal_yy`, `eos/P_enskog_yy` (for axis y) give the
 pressure predicted by the equation of state, Eq. (4) of the paper (Eq. (7) for one species), from
 the local densities and the total or axial temperatures, without and with the Enskog collisional
-part (contact values of Henderson / Carnahan–Starling type).
+part (contact values of Henderson / Carnahan–Starling type). The Enskog part takes a species-pair
+matrix per slab when written: memory and time grow with the square of the number of species.
 
 With `pressure` it measures the diagonal pressure tensor `pressure/P_xx`, `P_yy` (, `P_zz`): the
 kinetic part plus the collisional (virial) momentum flux shared among the slabs crossed by each

@@ -23,6 +23,8 @@ struct ConstantRestitution {
     static double tangential_restitution(const Pair& c) { return c.beta; }
     static double nominal_restitution(const Pair& c) { return c.alpha; }
     static bool rotates(const Pair& c) { return c.beta != -1.0; }
+    // The same contact for every pair of species: they may share a contact class.
+    static PartnerProperties partner_properties(const Params&) { return kNoPartnerProperties; }
 };
 
 const char* const kDescription =

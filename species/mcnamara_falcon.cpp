@@ -28,6 +28,8 @@ struct McNamaraFalcon {
     static double tangential_restitution(const Pair& c) { return c.beta; }
     static double nominal_restitution(const Pair& c) { return c.r0; }  // r(v0)
     static bool rotates(const Pair& c) { return c.beta != -1.0; }
+    // The same contact for every pair of species: they may share a contact class.
+    static PartnerProperties partner_properties(const Params&) { return kNoPartnerProperties; }
 };
 
 const char* const kDescription =

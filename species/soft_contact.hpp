@@ -131,6 +131,9 @@ struct LawBase {
     static double restitution(const Pair& c) { return c.restitution; }
     static double nominal_restitution(const Pair& c) { return c.restitution; }
     static bool rotates(const Pair& c) { return c.contact.mu > 0; }
+    // The damping (and the stiffness from a contact time) follow from the reduced mass (read());
+    // sizes and inertia enter the kernels per contact, not the Pair.
+    static PartnerProperties partner_properties(const Params&) { return {true, false, false}; }
     static double normal_restitution(const Pair& c, double) { return c.restitution; }
     static double tangential_restitution(const Pair&) { return -1.0; }
     static const char* hard_sphere_problem(const Pair& c) {

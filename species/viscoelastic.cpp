@@ -26,6 +26,8 @@ struct Viscoelastic {
     static double tangential_restitution(const Pair& c) { return c.beta; }
     static double nominal_restitution(const Pair&) { return 1.0; }  // the v -> 0 limit
     static bool rotates(const Pair& c) { return c.beta != -1.0; }
+    // The same contact for every pair of species: they may share a contact class.
+    static PartnerProperties partner_properties(const Params&) { return kNoPartnerProperties; }
 };
 
 const char* const kDescription =

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <mutex>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -424,14 +425,42 @@ int cmd_resume(const CommandLine& cl, int argc, char** argv) {
     return report_run(gran::resume_run(opt, given ? &*given : nullptr));
 }
 
+// std::bad_alloc: a clear message (not a crash, not a bare "std::bad_alloc") naming what was being
+// built and the scene keys that set the memory it needs, with this scene's values when known.
+int out_of_memory(const char* stage, const gran::Scene* scene) {
+    std::string sizes =
+        "the memory follows from `particles` (or the species' `count`), the number of species, "
+        "the observables' histogram `bins` and `frames`, and `run.measurement` over "
+        "`run.sample_interval` (time series are kept in memory)";
+    if (scene) {
+        std::string observables;
+        for (const auto& o : scene->observables)
+            observables += (observables.empty() ? "" : ", ") + o.name;
+        sizes += fmt::format(
+            "; this scene: {} particles, {} species ({} pair contacts stored), {} frames, "
+            "observables [{}]",
+            scene->species.total_count(), scene->species.size(), scene->contacts.pair_contacts(),
+            scene->frames, observables);
+    }
+    std::cerr << "gran: error: out of memory while " << stage << "; " << sizes
+              << ". Make the scene smaller or run it on a machine with more memory.\n";
+    return 1;
+}
+
 // `gran run` and `gran check` (check_only).
 int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
+    const char* stage = "reading the scene (species, contacts, plugins)";
+    std::optional<gran::Scene> loaded;
     try {
-        if (!check_only && (!cl.resume.empty() || !cl.recover.empty()))
+        if (!check_only && (!cl.resume.empty() || !cl.recover.empty())) {
+            stage = "resuming the run from its checkpoint";
             return cmd_resume(cl, argc, argv);
+        }
         if (cl.scene_file.empty())
             throw gran::SceneError("gran run: give a scene file, or --resume OUT.h5");
-        gran::Scene scene = gran::load_scene(cl.scene_file, cl.sets);
+        gran::Scene& scene = loaded.emplace(gran::load_scene(cl.scene_file, cl.sets));
+        stage = check_only ? "checking the scene (placing the particles, building the engine)"
+                           : "building and running the scene (engine, drivers, observables)";
         if (check_only) {
             gran::check_scene(scene);
             std::cout << fmt::format("{}: ok ({}D, {} particles, packing fraction {:.4g})\n",
@@ -452,6 +481,8 @@ int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
     } catch (const gran::CheckpointError& e) {
         std::cerr << "gran: error: " << e.what() << "\n";
         return 2;
+    } catch (const std::bad_alloc&) {
+        return out_of_memory(stage, loaded ? &*loaded : nullptr);
     } catch (const std::exception& e) {
         std::cerr << "gran: error: " << e.what() << "\n";
         return 1;

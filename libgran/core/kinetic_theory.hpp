@@ -50,6 +50,19 @@ double contact_value(int d, double phi);
 // Returns the row-major ns x ns matrix chi[i * ns + j], ns = sigma.size() = x.size().
 std::vector<double> contact_values_mixture(int d, double phi, const std::vector<double>& sigma,
                                            const std::vector<double>& x);
+// The same chi_ij one pair at a time (no ns x ns matrix: scenes of 10^4 species), from the
+// diameters sigma_i, sigma_j of the pair; the same values bit for bit.
+class MixtureContactValues {
+  public:
+    MixtureContactValues(int d, double phi, const std::vector<double>& sigma,
+                         const std::vector<double>& x);
+    double operator()(double sigma_i, double sigma_j) const;
+
+  private:
+    int d_;
+    double phi_;
+    double moment_ratio_ = 1;  // <sigma^(d-1)> / <sigma^d>
+};
 
 // Equation of state of an inelastic hard-sphere mixture (Barrat & Trizac 2002, Eq. (4), derived in
 // their Appendix B from the collisional momentum transfer, Eq. (B8)):

@@ -20,6 +20,11 @@ concept HasHardSphereProblem = requires(const typename L::Pair& p) {
     { L::hard_sphere_problem(p) } -> std::convertible_to<const char*>;
 };
 
+template <class L>
+concept HasPartnerProperties = requires(const Params& p) {
+    { L::partner_properties(p) } -> std::same_as<PartnerProperties>;
+};
+
 namespace law_detail {
 
 template <class L>
@@ -91,6 +96,15 @@ LawPlugin make_law_plugin(std::string name, std::string summary, Schema schema,
         return double(L::nominal_restitution(at<L>(t, i)));
     };
     p.rotates = [](const LawTableBase& t, std::size_t i) { return bool(L::rotates(at<L>(t, i))); };
+    // A law that does not say what it reads of its partners is taken to read all of it.
+    p.partner_properties = [](const Params& prm) {
+        if constexpr (HasPartnerProperties<L>) {
+            return L::partner_properties(prm);
+        } else {
+            (void)prm;
+            return PartnerProperties{};
+        }
+    };
     if constexpr (HardSphereLaw<L>) {
         p.hard_sphere = law_detail::hard_sphere_form<L>();
         register_event_driven_loops<L>(p.name);

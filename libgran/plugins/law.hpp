@@ -20,6 +20,8 @@
 //                       const LawContext&);   refuses with params.fail(key, why)
 //   static double nominal_restitution(const Pair&);   e.g. for the Enskog equation of state
 //   static bool rotates(const Pair&);         the contact needs angular velocities
+//   static PartnerProperties partner_properties(const Params&);   optional: what of a species
+//                                             partner resolve() reads (default: all of it)
 // hard-sphere form:
 //   static constexpr bool impact_dependent;   the restitution depends on the impact speed
 //   static double normal_restitution(const Pair&, double impact_speed);  alpha (sign ignored)
@@ -35,6 +37,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -57,6 +60,18 @@ struct ContactPartner {
     bool wall = false;
 };
 
+// What of a species partner a law's resolve() reads, for given parameters (besides whether the
+// partner is a wall, and its name in messages). Species that differ only in properties no law of
+// their contacts reads share one contact class, and so one entry of the pair table
+// (ContactTable): constant_restitution reads none of them, so 10^4 species of distinct diameters
+// cost one pair entry; a soft law reads the mass (its damping follows from the reduced mass).
+struct PartnerProperties {
+    bool mass = true;
+    bool diameter = true;
+    bool inertia_factor = true;
+};
+inline constexpr PartnerProperties kNoPartnerProperties{false, false, false};
+
 // Scene facts a law may read when it resolves a contact.
 struct LawContext {
     int dimension = 2;
@@ -64,8 +79,8 @@ struct LawContext {
     double lightest_mass = 1;        // of the species, for a default thermal speed sqrt(T0 / m)
 };
 
-// The resolved contacts of one scene, of one law type: pairs first (index a ns + b), then walls
-// (index ns ns + w ns + s for wall partner w and species s).
+// The resolved contacts of one scene, of one law type: pairs of contact classes first (index
+// ContactTable::pair_index), then walls (ContactTable::wall_index).
 struct LawTableBase {
     virtual ~LawTableBase() = default;
 };
@@ -87,6 +102,8 @@ struct LawPlugin : PluginInfo {
         copy;
     std::function<double(const LawTableBase&, std::size_t)> nominal_restitution;
     std::function<bool(const LawTableBase&, std::size_t)> rotates;
+    // What resolve() reads of a species partner with these parameters (null: everything).
+    std::function<PartnerProperties(const Params&)> partner_properties;
     // Hard-sphere form (null: none): the restitutions of one contact, for laws mixed per pair.
     struct HardSphere {
         bool impact_dependent = false;
@@ -147,18 +164,31 @@ concept SoftContactLaw = InteractionLaw<L> && requires(const typename L::Pair& p
 // The resolved contacts of a scene, engine-agnostic (libgran/scene/interactions.cpp builds it):
 // one law for every contact (several hard-sphere laws mixed per pair are combined into the
 // built-in mixed law), its table, and the wall partners.
+//
+// Grain-grain contacts are stored per pair of contact classes, not per pair of species, so the
+// table does not grow with the square of the number of species when the contacts cannot tell the
+// species apart: a species named in a `pairs` entry has a class of its own, the others share one
+// per distinct value of the properties the default law reads (PartnerProperties). Grain-wall
+// contacts stay per species (walls x species). The engines pay one lookup of a species' class per
+// contact (a small array, hot in cache), no allocation and no call.
 struct ContactTable {
     const LawPlugin* law = nullptr;
     std::shared_ptr<const LawTableBase> table;
     std::size_t species = 0;
+    std::size_t classes = 0;                  // contact classes
+    std::vector<std::uint32_t> class_of;      // per species
     std::vector<std::string> laws;            // the laws the scene names, in order of first use
     std::vector<std::string> walls;           // wall partner names (a wall driver's name, or "box")
     bool rotating = false;                    // some contact needs angular velocities
-    std::vector<double> nominal_restitution;  // per species pair, ns x ns
+    std::vector<double> nominal_restitution;  // per pair of contact classes (pair_index)
 
-    std::size_t pair_index(std::size_t a, std::size_t b) const { return a * species + b; }
+    std::size_t pair_index(std::size_t a, std::size_t b) const {
+        return std::size_t(class_of[a]) * classes + class_of[b];
+    }
+    // Stored grain-grain contacts: classes x classes, the first entries of the table.
+    std::size_t pair_contacts() const { return classes * classes; }
     std::size_t wall_index(std::size_t w, std::size_t s) const {
-        return species * species + w * species + s;
+        return pair_contacts() + w * species + s;
     }
     // Index of a wall partner by name, walls.size() if absent.
     std::size_t wall_named(const std::string& name) const {

@@ -2,6 +2,7 @@
 // What plugin factories may read about the scene they are built for. Engine-free: a plugin learns
 // what the engine offers (binary collision records or not), never which engine runs.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -19,10 +20,16 @@ struct SceneInfo {
     double initial_temperature = 1;
     std::array<double, 3> gravity{0, 0, 0};
     // The contacts: whether grains carry angular velocities (some contact needs them), and the
-    // nominal normal restitution of each species pair (ns x ns, for kinetic-theory estimates such
-    // as the Enskog equation of state).
+    // nominal normal restitution of each species pair (for kinetic-theory estimates such as the
+    // Enskog equation of state), stored per pair of contact classes (ContactTable, law.hpp).
     bool rotating = false;
-    std::vector<double> nominal_restitution;
+    std::size_t contact_classes = 0;
+    std::vector<std::uint32_t> contact_class;  // of each species
+    std::vector<double> nominal_restitution;   // contact_classes x contact_classes
+    double nominal_restitution_of(std::size_t a, std::size_t b) const {
+        return nominal_restitution[std::size_t(contact_class[a]) * contact_classes +
+                                   contact_class[b]];
+    }
     // The engine produces binary collision records (instantaneous collisions); a soft-contact
     // engine has contacts of finite duration instead.
     bool binary_collisions = true;

@@ -28,7 +28,7 @@ double collision_frequency(const Scene& sc) {
         x.push_back(double(s.count) / n_total);
     }
     const double phi = std::min(sc.packing_fraction, 0.5);  // a rate, not the packing's limit
-    const auto chi = theory::contact_values_mixture(sc.dimension, phi, sigma, x);
+    const theory::MixtureContactValues chi(sc.dimension, phi, sigma, x);
     const double T = sc.temperature;
     double omega = 0;
     for (std::size_t a = 0; a < t.size(); ++a) {
@@ -36,9 +36,10 @@ double collision_frequency(const Scene& sc) {
             // The partners of a particle of species a: the others (a lone particle has none, and
             // a schedule in collisions per particle never ends: refused as an endless run).
             const double partners = double(t.species[b].count) - (a == b ? 1.0 : 0.0);
-            omega += x[a] * theory::enskog_pair_collision_frequency(
-                                sc.dimension, partners / volume, 0.5 * (sigma[a] + sigma[b]),
-                                chi[a * t.size() + b], T, t.species[a].mass, T, t.species[b].mass);
+            omega +=
+                x[a] * theory::enskog_pair_collision_frequency(
+                           sc.dimension, partners / volume, 0.5 * (sigma[a] + sigma[b]),
+                           chi(sigma[a], sigma[b]), T, t.species[a].mass, T, t.species[b].mass);
         }
     }
     return omega;

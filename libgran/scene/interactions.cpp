@@ -4,9 +4,13 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <deque>
 #include <limits>
+#include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
 namespace gran {
@@ -73,15 +77,27 @@ ContactPartner wall_partner(const std::string& name) {
     return {name, std::numeric_limits<double>::infinity(), 0.0, 0.0, true};
 }
 
-// Every contact's level: species pairs (ns x ns) then walls (nw x ns), as ContactTable indexes.
-// Levels are referred to, never assigned: a yaml-cpp node assigned to another rebinds the node it
-// shares with its copies, so copying a Params and assigning over it would change the original.
+// Every contact's level: pairs of contact classes (nc x nc) then walls (nw x ns), as
+// ContactTable indexes. Levels are referred to, never assigned: a yaml-cpp node assigned to
+// another rebinds the node it shares with its copies, so copying a Params and assigning over it
+// would change the original.
 struct Contacts {
-    std::size_t ns = 0, nw = 0;
+    std::size_t ns = 0, nw = 0, nc = 0;   // species, wall partners, contact classes
+    std::vector<std::uint32_t> class_of;  // per species
+    std::vector<std::size_t> first;       // per class: its first species, the one resolved
     std::deque<Level> overrides;
     std::vector<const Level*> levels;
-    std::vector<bool> overridden;
-    std::size_t wall(std::size_t w, std::size_t s) const { return ns * ns + w * ns + s; }
+    std::size_t pair(std::size_t a, std::size_t b) const {
+        return std::size_t(class_of[a]) * nc + class_of[b];
+    }
+    std::size_t wall(std::size_t w, std::size_t s) const { return nc * nc + w * ns + s; }
+};
+
+// One `pairs` entry as read: its level and partners (i0 a species, i1 a species or a wall).
+struct Override {
+    const Level* level = nullptr;
+    std::size_t i0 = 0, i1 = 0;
+    bool wall = false;
 };
 
 // Index of a partner name: a species (wall = false) or a wall partner (wall = true).
@@ -104,10 +120,12 @@ std::size_t partner_index(const std::string& name, const SpeciesTable& species,
     return std::size_t(it - walls.begin());
 }
 
-// One `pairs` entry: a species and a species or wall partner, and the contact's level.
-void read_pair(const YAML::Node& entry, const Where& wk, const SpeciesTable& species,
-               const std::vector<std::string>& walls, const Level& defaults, const Level& at_walls,
-               Contacts& c, YAML::Node& resolved) {
+// One `pairs` entry: a species and a species or wall partner, and the contact's level. `given`
+// holds the contacts already given (species pairs in order, walls after the species).
+Override read_pair(const YAML::Node& entry, const Where& wk, const SpeciesTable& species,
+                   const std::vector<std::string>& walls, const Level& defaults,
+                   const Level& at_walls, Contacts& c,
+                   std::set<std::pair<std::size_t, std::size_t>>& given, YAML::Node& resolved) {
     const YAML::Node between = child(entry, "between");
     if (!entry.IsMap() || !between.IsSequence() || between.size() != 2 || !between[0].IsScalar() ||
         !between[1].IsScalar()) {
@@ -127,22 +145,17 @@ void read_pair(const YAML::Node& entry, const Where& wk, const SpeciesTable& spe
     const Level& level = c.overrides.emplace_back(Level{
         &law,
         read_params(entry, inheriting(law, same_law(above, law), pair_override_schema()), wk)});
-    const std::size_t ns = c.ns;
-    const std::vector<std::size_t> slots =
-        wall ? std::vector<std::size_t>{c.wall(i1, i0)}
-             : std::vector<std::size_t>{i0 * ns + i1, i1 * ns + i0};
-    if (c.overridden[slots[0]]) {
+    const std::pair<std::size_t, std::size_t> key =
+        wall ? std::pair{i0, c.ns + i1} : std::pair{std::min(i0, i1), std::max(i0, i1)};
+    if (!given.insert(key).second) {
         fail(wk.child("between"), between,
              fmt::format("the contact {}-{} is already given by another entry", n0, n1));
-    }
-    for (std::size_t s : slots) {
-        c.levels[s] = &level;
-        c.overridden[s] = true;
     }
     YAML::Node r = resolved_keys(level);
     r["between"].push_back(n0);
     r["between"].push_back(n1);
     resolved.push_back(r);
+    return {&level, i0, i1, wall};
 }
 
 // The defaults (law and keys at the top of the section).
@@ -164,40 +177,103 @@ Level read_walls(const YAML::Node& node, const Level& defaults, const Where& ww)
     return {&law, read_params(node, schema, ww)};
 }
 
+// The contact classes: a species named in a grain-grain `pairs` entry has a class of its own;
+// the others, whose contacts all take the defaults, share a class when they agree in every
+// property the default law reads (PartnerProperties). Classes are numbered in order of their first
+// species, so a scene whose species all differ keeps the species' order.
+void assign_classes(Contacts& c, const SpeciesTable& species, const Level& defaults,
+                    const std::vector<Override>& overrides) {
+    std::vector<bool> named(c.ns, false);
+    for (const Override& o : overrides) {
+        if (o.wall) continue;
+        named[o.i0] = true;
+        named[o.i1] = true;
+    }
+    const PartnerProperties reads = defaults.law->partner_properties
+                                        ? defaults.law->partner_properties(defaults.params)
+                                        : PartnerProperties{};
+    std::map<std::array<double, 3>, std::uint32_t> shared;
+    c.class_of.resize(c.ns);
+    for (std::size_t s = 0; s < c.ns; ++s) {
+        const Species& sp = species.species[s];
+        auto fresh = [&] {
+            c.first.push_back(s);
+            return std::uint32_t(c.first.size() - 1);
+        };
+        if (named[s]) {
+            c.class_of[s] = fresh();
+            continue;
+        }
+        const std::array<double, 3> key{reads.mass ? sp.mass : 0.0,
+                                        reads.diameter ? sp.diameter : 0.0,
+                                        reads.inertia_factor ? sp.inertia_factor : 0.0};
+        const auto it = shared.find(key);
+        c.class_of[s] =
+            it != shared.end() ? it->second : shared.emplace(key, fresh()).first->second;
+    }
+    c.nc = c.first.size();
+}
+
+// Every contact's level: the defaults, the walls' level, then the `pairs` entries.
+void assign_levels(Contacts& c, const Level& defaults, const Level& at_walls,
+                   const std::vector<Override>& overrides) {
+    c.levels.assign(c.nc * c.nc, &defaults);
+    c.levels.resize(c.nc * c.nc + c.nw * c.ns, &at_walls);
+    for (const Override& o : overrides) {
+        if (o.wall) {
+            c.levels[c.wall(o.i1, o.i0)] = o.level;
+        } else {
+            c.levels[c.pair(o.i0, o.i1)] = o.level;
+            c.levels[c.pair(o.i1, o.i0)] = o.level;
+        }
+    }
+}
+
+// The laws the levels name, in order of first use; several are mixed per contact, which only laws
+// with a hard-particle form can be.
+std::vector<std::string> laws_of(const Contacts& c) {
+    std::vector<std::string> laws;
+    for (const Level* l : c.levels) {
+        if (std::find(laws.begin(), laws.end(), l->law->name) == laws.end())
+            laws.push_back(l->law->name);
+    }
+    for (const Level* l : c.levels) {
+        if (laws.size() > 1 && !l->law->hard_sphere) {
+            throw std::invalid_argument(fmt::format(
+                "the contacts use the laws {}; only laws with a hard-particle form can be mixed "
+                "per contact, and law '{}' has none",
+                fmt::join(laws, ", "), l->law->name));
+        }
+    }
+    return laws;
+}
+
 // Resolves every contact with its level's law into one table (or the mixed table of several
-// hard-sphere laws).
+// hard-sphere laws). A pair of classes is resolved between their first species.
 ContactTable resolve_contacts(const Contacts& c, const SpeciesTable& species,
                               const std::vector<std::string>& walls, const LawContext& ctx) {
     ContactTable t;
     t.species = c.ns;
+    t.classes = c.nc;
+    t.class_of = c.class_of;
     t.walls = walls;
-    for (const Level* l : c.levels) {
-        if (std::find(t.laws.begin(), t.laws.end(), l->law->name) == t.laws.end())
-            t.laws.push_back(l->law->name);
-    }
+    t.laws = laws_of(c);
     const bool mixed = t.laws.size() > 1;
-    for (const Level* lp : c.levels) {
-        const Level& l = *lp;
-        if (mixed && !l.law->hard_sphere) {
-            throw std::invalid_argument(fmt::format(
-                "the contacts use the laws {}; only laws with a hard-particle form can be mixed "
-                "per contact, and law '{}' has none",
-                fmt::join(t.laws, ", "), l.law->name));
-        }
-    }
     t.law = mixed ? &mixed_hard_sphere_law() : c.levels.front()->law;
     auto table = t.law->make_table(c.levels.size());
-    t.nominal_restitution.assign(c.ns * c.ns, 1.0);
+    const std::size_t pairs = c.nc * c.nc;
+    t.nominal_restitution.assign(pairs, 1.0);
     const auto partner = [&](std::size_t k, bool second) {
-        if (k < c.ns * c.ns) return species_partner(species.species[second ? k % c.ns : k / c.ns]);
-        const std::size_t wk = k - c.ns * c.ns;
+        if (k < pairs)
+            return species_partner(species.species[c.first[second ? k % c.nc : k / c.nc]]);
+        const std::size_t wk = k - pairs;
         return second ? wall_partner(walls[wk / c.ns])
                       : species_partner(species.species[wk % c.ns]);
     };
     for (std::size_t k = 0; k < c.levels.size(); ++k) {
-        const bool pair = k < c.ns * c.ns;
-        if (pair && k % c.ns < k / c.ns && !mixed) {  // (b, a) of a resolved (a, b)
-            t.law->copy(*table, k, *table, (k % c.ns) * c.ns + k / c.ns);
+        const bool pair = k < pairs;
+        if (pair && k % c.nc < k / c.nc && !mixed) {  // (b, a) of a resolved (a, b)
+            t.law->copy(*table, k, *table, (k % c.nc) * c.nc + k / c.nc);
         } else {
             const LawPlugin& law = *c.levels[k]->law;
             auto one = law.make_table(1);
@@ -263,20 +339,21 @@ ContactTable read_interactions(const YAML::Node& node, const SpeciesTable& speci
     Contacts c;
     c.ns = species.size();
     c.nw = wall_partners.size();
-    c.levels.assign(c.ns * c.ns, &defaults);
-    c.levels.resize(c.ns * c.ns + c.nw * c.ns, &at_walls);
-    c.overridden.assign(c.levels.size(), false);
     resolved = resolved_keys(defaults);
     if (child(node, "walls").IsDefined()) resolved["walls"] = resolved_keys(at_walls);
+    std::vector<Override> overrides;
     const YAML::Node pairs = child(node, "pairs");
     if (pairs.IsDefined() && !pairs.IsNull()) {
         YAML::Node rp(YAML::NodeType::Sequence);
+        std::set<std::pair<std::size_t, std::size_t>> given;
         for (std::size_t k = 0; k < pairs.size(); ++k) {
-            read_pair(pairs[k], wi.child("pairs").item(k), species, wall_partners, defaults,
-                      at_walls, c, rp);
+            overrides.push_back(read_pair(pairs[k], wi.child("pairs").item(k), species,
+                                          wall_partners, defaults, at_walls, c, given, rp));
         }
         resolved["pairs"] = rp;
     }
+    assign_classes(c, species, defaults, overrides);
+    assign_levels(c, defaults, at_walls, overrides);
     try {
         return resolve_contacts(c, species, wall_partners, context);
     } catch (const std::invalid_argument& e) {  // a mixed table of a law without hard form

@@ -98,6 +98,8 @@ void check_plugins(Scene& sc, const YAML::Node& root, const Where& top, YAML::No
         read_interactions(child(root, "interactions"), sc.species, partners, context, top, ri);
     res["interactions"] = ri;
     sc.info.rotating = sc.contacts.rotating;
+    sc.info.contact_classes = sc.contacts.classes;
+    sc.info.contact_class = sc.contacts.class_of;
     sc.info.nominal_restitution = sc.contacts.nominal_restitution;
     check_observables<D>(sc, demands);
     sc.engine->check(sc, demands);

@@ -170,3 +170,26 @@ TEST_F(DiskFull, NoFileIsLeftAtTheFinalName) {
 }
 
 }  // namespace
+
+// std::bad_alloc (here: 10^9 particles under a 1 GB address-space limit, `ulimit -v`) is a clear
+// error naming the stage and the keys that set the memory, exit 1, not an abort. Skipped under the
+// address sanitizer, which reserves terabytes of address space at start.
+TEST_F(CliSafety, OutOfMemoryIsAClearErrorNamingTheKeysThatSetTheSize) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "ulimit -v and the address sanitizer do not mix";
+#endif
+    for (const std::string command : {"check", "run"}) {
+        const std::string gran =
+            gran::testing::shell_quote(gran::testing::kGran) + " -q " + command + " " +
+            gran::testing::shell_quote(kDemo) + " --set particles=1000000000" +
+            (command == "run" ? " -o " + gran::testing::shell_quote(path("r.h5")) : "");
+        const Outcome o =
+            gran::testing::run_command({"/bin/sh", "-c", "ulimit -v 1000000 && exec " + gran});
+        ASSERT_FALSE(o.signaled) << o.output;
+        EXPECT_EQ(o.exit_code, 1) << o.output;
+        EXPECT_NE(o.output.find("gran: error: out of memory while"), std::string::npos) << o.output;
+        EXPECT_NE(o.output.find("`particles`"), std::string::npos) << o.output;
+        EXPECT_NE(o.output.find("1000000000 particles, 2 species"), std::string::npos) << o.output;
+        EXPECT_FALSE(std::filesystem::exists(path("r.h5")));
+    }
+}

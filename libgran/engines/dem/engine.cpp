@@ -28,7 +28,8 @@ double shortest_contact_duration(const ContactTable& contacts, bool walls) {
     if (!soft) fail("law '" + contacts.law->name + "' has no soft-contact form");
     double tc = kInf;
     const std::size_t ns = contacts.species;
-    for (std::size_t k = 0; k < ns * ns; ++k) tc = std::min(tc, soft->duration(*contacts.table, k));
+    for (std::size_t k = 0; k < contacts.pair_contacts(); ++k)
+        tc = std::min(tc, soft->duration(*contacts.table, k));
     if (walls) {
         for (std::size_t w = 0; w < contacts.walls.size(); ++w) {
             for (std::size_t s = 0; s < ns; ++s)

@@ -35,6 +35,9 @@ void DemEngine<D>::pair_forces(double dt_advance) {
     constexpr bool kHistory = L::history;
     const std::size_t ns = mass_.size();
     const typename L::Pair* params = contacts_.template contacts<L>();
+    // Pair parameters per contact class (ContactTable): one lookup of each partner's class.
+    const std::uint32_t* class_of = contacts_.class_of.data();
+    const std::size_t classes = contacts_.classes;
     const double* sigma = sigma_.data();
     const AngVec<D> zero = ang_zero<D>();
     std::uint64_t formed = 0, active = 0;
@@ -65,7 +68,7 @@ void DemEngine<D>::pair_forces(double dt_advance) {
     for (std::size_t k = 0; k < entries; ++k) {
         const std::uint32_t i = owner[k], j = partner[k];
         const std::uint32_t si = species[i], sj = species[j];
-        const typename L::Pair& P = params[si * ns + sj];
+        const typename L::Pair& P = params[class_of[si] * classes + class_of[sj]];
         const double sigma_ij = sigma[si * ns + sj];
         std::array<double, D> dc;
         double dist2 = 0;
@@ -227,7 +230,8 @@ double DemEngine<D>::elastic_energy_with() const {
             const double dist = box_.separation(p_.r[i], p_.r[j]).norm();
             if (!(dist < sigma_[pij])) continue;
             const double xi2 = history_ ? list_.spring[k].squaredNorm() : 0.0;
-            e += L::elastic_energy(params[pij], sigma_[pij] - dist, xi2);
+            const std::size_t cij = contacts_.pair_index(s, p_.species[j]);
+            e += L::elastic_energy(params[cij], sigma_[pij] - dist, xi2);
         }
     }
     const double t = now();

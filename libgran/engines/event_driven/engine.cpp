@@ -26,11 +26,7 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
         diameter_.push_back(s.diameter);
         inertia_.push_back(s.inertia_factor);
     }
-    sigma_pair_.resize(ns_ * ns_);
-    for (std::size_t a = 0; a < ns_; ++a) {
-        for (std::size_t b = 0; b < ns_; ++b)
-            sigma_pair_[a * ns_ + b] = 0.5 * (diameter_[a] + diameter_[b]);
-    }
+    for (double d : diameter_) radius_.push_back(0.5 * d);
     for (int a = 0; a < D; ++a) {
         g_[a] = settings_.gravity[std::size_t(a)];
         if (g_[a] != 0.0) gravity_ = true;
@@ -44,7 +40,7 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     if (contacts_.rotating && !rough_) {
         throw std::logic_error("EventDrivenEngine: rough contacts need angular velocities");
     }
-    pair_collisions_.assign(ns_ * ns_, 0);
+    pair_collisions_.reset(ns_);
 
     const std::size_t n = p_.size();
     count_.assign(n, 0);
@@ -111,7 +107,8 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, std::size_t n, double&
     const Vec<D> ri = r[i];
     const Vec<D> vi = v[i];
     const Vec<D> g = g_;
-    const double* sig = &sigma_pair_[species[i] * ns_];
+    const double* radius = radius_.data();
+    const double ri_radius = radius[species[i]];
     double best = best_out;
     std::int32_t partner = partner_out;
     auto scan = [&](auto contact) {
@@ -139,10 +136,12 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, std::size_t n, double&
     };
     // One species: the contact distance is a constant and the species array is not read.
     if (ns_ == 1) {
-        const double s0 = sig[0];
+        const double s0 = ri_radius + radius[0];
         scan([s0](std::uint32_t) { return s0; });
     } else {
-        scan([sig, species](std::uint32_t j) { return sig[species[j]]; });
+        scan([ri_radius, radius, species](std::uint32_t j) {
+            return ri_radius + radius[species[j]];
+        });
     }
     best_out = best;
     partner_out = partner;
@@ -151,7 +150,7 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, std::size_t n, double&
 template <int D>
 void EventDrivenEngine<D>::scan_gathered_images(std::uint32_t i, std::size_t n, double& best,
                                                 std::int32_t& partner) const {
-    const double* sig = &sigma_pair_[p_.species[i] * ns_];
+    const double ri_radius = radius_[p_.species[i]];
     const std::uint32_t* buf = cells_.candidates();
     for (std::size_t m = 0; m < n; ++m) {
         const std::uint32_t j = buf[m];
@@ -166,7 +165,8 @@ void EventDrivenEngine<D>::scan_gathered_images(std::uint32_t i, std::size_t n, 
         const Vec<D> dr = box_.separation(p_.r[i], rj);
         const Vec<D> dv = p_.v[i] - vj;
         for (const Vec<D>& off : cells_.image_offsets()) {
-            const double t = pair_collision_time<D>(dr + off, dv, sig[p_.species[j]], best);
+            const double t =
+                pair_collision_time<D>(dr + off, dv, ri_radius + radius_[p_.species[j]], best);
             if (t < best) {
                 best = t;
                 partner = std::int32_t(j);

@@ -31,6 +31,7 @@
 #include "libgran/engines/event_driven/cell_list.hpp"
 #include "libgran/engines/event_driven/collision_rules.hpp"
 #include "libgran/engines/event_driven/event_times.hpp"
+#include "libgran/engines/event_driven/pair_counts.hpp"
 #include "libgran/engines/event_driven/scheduler.hpp"
 #include "libgran/plugins/law.hpp"
 #include "libgran/plugins/wall.hpp"
@@ -107,8 +108,9 @@ class EventDrivenEngine {
     }
     std::size_t species_count() const { return ns_; }
     const EngineCounters& counters() const { return counters_; }
-    // Collisions per unordered species pair, index min(a,b) * ns + max(a,b).
-    const std::vector<std::uint64_t>& pair_collisions() const { return pair_collisions_; }
+    // Collisions per unordered species pair, index min(a,b) * ns + max(a,b) (ns x ns: with many
+    // species made from the pairs that collided at each call, PairCounts).
+    const std::vector<std::uint64_t>& pair_collisions() const { return pair_collisions_.dense(); }
 
     // Brings every particle to the current time (positions exact at now()).
     void synchronize();
@@ -211,7 +213,9 @@ class EventDrivenEngine {
     // species tables, flattened
     std::size_t ns_ = 0;
     std::vector<double> mass_, diameter_, inertia_;
-    std::vector<double> sigma_pair_;
+    // Half diameters: the contact distance of a pair is radius_[a] + radius_[b], bit for bit
+    // 0.5 (d_a + d_b) (halving is exact), with no ns x ns table.
+    std::vector<double> radius_;
     ContactTable contacts_;  // the law's parameters of every pair and wall contact
     int (EventDrivenEngine::*loop_)(double, std::uint64_t, const std::atomic<bool>*,
                                     std::uint64_t) = nullptr;
@@ -225,7 +229,7 @@ class EventDrivenEngine {
     Scheduler events_;
     CellList<D> cells_;
 
-    std::vector<std::uint64_t> pair_collisions_;
+    PairCounts pair_collisions_;
     CollisionSink<D>* sink_ = nullptr;
 
     struct WallSlot {

@@ -88,12 +88,12 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
     move(i);
     move(j);
     const std::uint32_t si = p_.species[i], sj = p_.species[j];
-    const std::size_t pij = si * ns_ + sj;
+    const double sigma_ij = radius_[si] + radius_[sj];
     const Vec<D> dr = box_.separation(p_.r[i], p_.r[j]);
     const double dist = dr.norm();
     const Vec<D> n = dr / dist;
-    if (dist < sigma_pair_[pij] * (1.0 - 1e-10)) ++counters_.overlap_collisions;
-    const typename L::Pair& law = contacts_.template contacts<L>()[pij];
+    if (dist < sigma_ij * (1.0 - 1e-10)) ++counters_.overlap_collisions;
+    const typename L::Pair& law = contacts_.template contacts<L>()[contacts_.pair_index(si, sj)];
     double alpha;
     if constexpr (L::impact_dependent) {
         // r(v) laws take the normal relative speed at impact (McNamara & Falcon 2005, Eq. 1).
@@ -109,7 +109,7 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
         ++counters_.tc_collisions;
     }
     CollisionRecord<D> rec;
-    if (sink_) record_before(rec, i, j, n, alpha, beta, sigma_pair_[pij]);
+    if (sink_) record_before(rec, i, j, n, alpha, beta, sigma_ij);
     double impulse;
     if (rough_) {
         impulse = rough_collision<D>(p_.v[i], p_.v[j], p_.w[i], p_.w[j], mass_[si], mass_[sj],
@@ -123,7 +123,7 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
     ++count_[i];
     ++count_[j];
     ++counters_.collisions;
-    ++pair_collisions_[std::min(si, sj) * ns_ + std::max(si, sj)];
+    pair_collisions_.add(std::min(si, sj), std::max(si, sj));
     if (sink_) notify(rec, i, j, impulse);
     repredict(i);
     repredict(j);

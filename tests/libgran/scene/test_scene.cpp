@@ -32,9 +32,9 @@ TEST(Scene, NumberFractionsResolveToCountsAndBoxFromPackingFraction) {
     EXPECT_EQ(s.species.species[1].count, 100u);
     EXPECT_NEAR(s.packing_fraction, 0.1, 1e-12);
     EXPECT_DOUBLE_EQ(s.species.species[0].inertia_factor, 0.5);  // disks
-    EXPECT_DOUBLE_EQ(s.contacts.nominal_restitution[0 * 2 + 1], 0.8);
-    EXPECT_DOUBLE_EQ(s.contacts.nominal_restitution[1 * 2 + 0], 0.8);
-    EXPECT_DOUBLE_EQ(s.contacts.nominal_restitution[0 * 2 + 0], 0.9);
+    EXPECT_DOUBLE_EQ(s.contacts.nominal_restitution[s.contacts.pair_index(0, 1)], 0.8);
+    EXPECT_DOUBLE_EQ(s.contacts.nominal_restitution[s.contacts.pair_index(1, 0)], 0.8);
+    EXPECT_DOUBLE_EQ(s.contacts.nominal_restitution[s.contacts.pair_index(0, 0)], 0.9);
 }
 
 TEST(Scene, ResolvedSceneIsItselfAValidSceneThatRerunsIdentically) {
