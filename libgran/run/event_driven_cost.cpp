@@ -114,19 +114,13 @@ void refuse_endless_run(const Scene& sc, const EventEstimate& e) {
     const double events = e.events();
     const bool dilute = crossings_swamp_collisions(e);
     if (events <= kMaxEvents && !dilute) return;  // NaN and inf fail the first test too
-    const std::string what =
-        dilute
-            ? fmt::format(
-                  "this run would need about {:.2g} events ({:.2g} collisions, {:.2g} "
-                  "cell crossings over {:.3g} time units, kinetic theory at the initial "
-                  "temperature), over {:g} cell crossings per collision",
-                  events, e.collisions, e.crossings, e.simulated_time, kMaxCrossingsPerCollision)
-            : fmt::format(
-                  "this run would need about {:.2g} events ({:.2g} collisions, {:.2g} "
-                  "cell crossings, {:.2g} kick updates over {:.3g} time units, kinetic "
-                  "theory at the initial temperature), more than {:g}: it could not "
-                  "finish",
-                  events, e.collisions, e.crossings, e.kick_updates, e.simulated_time, kMaxEvents);
+    const std::string what = fmt::format(
+        "this run would need about {:.2g} events ({:.2g} collisions, {:.2g} cell crossings, "
+        "{:.2g} kick updates over {:.3g} time units, kinetic theory at the initial temperature), "
+        "{}",
+        events, e.collisions, e.crossings, e.kick_updates, e.simulated_time,
+        dilute ? fmt::format("over {:g} cell crossings per collision", kMaxCrossingsPerCollision)
+               : fmt::format("more than {:g}: it could not finish", kMaxEvents));
     if (dilute || !std::isfinite(e.simulated_time) ||
         e.crossings >= std::max(e.collisions, e.kick_updates)) {
         throw SceneError(fmt::format(
