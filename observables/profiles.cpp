@@ -286,6 +286,8 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         const std::size_t ns = table_.size();
         std::vector<double> n(ns), T(ns), m(ns), sigma(ns), x(ns), alpha(ns * ns, 0.0),
             chi(ns * ns, 0.0);
+        // No samples (a run stopped in its first block: the leave-one-out sums are empty).
+        if (a.samples == 0) return std::nan("");
         double n_total = 0, phi = 0;
         const double vd = theory::unit_ball_volume(D);
         for (std::size_t s = 0; s < ns; ++s) {
@@ -337,7 +339,8 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         const double full = f(row_sums(row, nblocks_), volume);
         std::vector<double> loo;
         for (std::size_t b = 0; b < nblocks_; ++b) {
-            if (samples_in_block_[b] == 0) continue;
+            // Only blocks whose removal leaves samples (not the only one filled yet).
+            if (samples_in_block_[b] == 0 || samples_in_block_[b] == samples_) continue;
             loo.push_back(f(row_sums(row, b), volume));
         }
         // Only block sums are kept, so tau_int and n_eff stay unknown (NaN).

@@ -116,31 +116,14 @@ std::string default_output(const std::string& scene) {
     return (std::filesystem::path("results") / p.stem()).string() + ".h5";
 }
 
+// The summary's headline (libgran/run/headline.hpp): the temperature ratios gamma.
 void print_headline(const YAML::Node& summary) {
-    // gamma values, if measured, are what the demo and most studies are after.
-    const YAML::Node obs = summary["observables"];
-    if (!obs) return;
-    for (auto it = obs.begin(); it != obs.end(); ++it) {
-        // Profiles: the ratios in the middle of the cell (Barrat & Trizac 2002, Tables I-II).
-        for (auto m = it->second.begin(); m != it->second.end(); ++m) {
-            const std::string key = m->first.as<std::string>();
-            const std::string prefix = "middle/ratios/";
-            if (key.rfind(prefix, 0) == 0 && key.size() > 6 &&
-                key.substr(key.size() - 6) == "/gamma") {
-                std::cout << fmt::format(
-                    "gamma in the middle of the cell ({}) = {:.4f} +- {:.4f}\n",
-                    key.substr(prefix.size(), key.size() - prefix.size() - 6),
-                    m->second["value"].as<double>(), m->second["error"].as<double>());
-            }
-        }
-        const YAML::Node ratios = it->second["ratios"];
-        if (!ratios) continue;
-        for (auto r = ratios.begin(); r != ratios.end(); ++r) {
-            const YAML::Node g = r->second["gamma"];
-            std::cout << fmt::format("gamma over the whole system ({}) = {:.4f} +- {:.4f}\n",
-                                     r->first.as<std::string>(), g["value"].as<double>(),
-                                     g["error"].as<double>());
-        }
+    const YAML::Node h = summary["headline"];
+    if (!h || !h.IsMap()) return;
+    for (auto it = h.begin(); it != h.end(); ++it) {
+        std::cout << fmt::format("{} = {:.4f} +- {:.4f} ({})\n", it->first.as<std::string>(),
+                                 it->second["value"].as<double>(), it->second["error"].as<double>(),
+                                 it->second["from"].as<std::string>());
     }
 }
 

@@ -13,6 +13,7 @@
 #include "libgran/run/checkpoint.hpp"
 #include "libgran/run/equilibration.hpp"
 #include "libgran/run/frames.hpp"
+#include "libgran/run/headline.hpp"
 #include "libgran/run/initial_state.hpp"
 #include "libgran/run/progress.hpp"
 #include "libgran/run/result_file.hpp"
@@ -261,6 +262,7 @@ class ScheduleLoop {
             frame_of<D>(view, positions_, velocities_, species_);
             frames_.append(runner_.now(), positions_, velocities_, species_);
         }
+        if (opt_.on_sample) opt_.on_sample(out_.samples, runner_.now());
     }
 
     const Scene& sc_;
@@ -369,6 +371,7 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     loop.frames().write(sink.root());  // before the summary's `particles` (file only)
     write_summary_header(sink.summary(), sc, opt.output, out.status(), out.watchdog_stop, n);
     write_results<D>(sink.root(), sc, runner, st.drivers, st.observables, out, totals);
+    if (const YAML::Node h = headline(sink.summary()); h.size() > 0) sink.summary()["headline"] = h;
     for (const auto& q : sink.unreliable())
         spdlog::warn("{}: the value or its error bar is not finite; status: unreliable", q);
     sink.finish(totals.completed);

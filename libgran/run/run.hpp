@@ -2,6 +2,8 @@
 // Running a scene: build the initial state, equilibrate, measure, write the HDF5 result and the
 // human-readable summary. Interruptible (SIGINT/SIGTERM): what was measured so far is written.
 #include <atomic>
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,9 @@ struct RunOptions {
     // Resuming: write the result from the checkpoint's state as an interrupted run, without
     // running (`gran run --recover`); the checkpoint is kept for a later --resume.
     bool recover_only = false;
+    // Called after every measurement sample with the samples taken and the simulated time (the
+    // Python module's callbacks); may set *interrupt to stop the run.
+    std::function<void(std::size_t samples, double time)> on_sample;
 };
 
 struct RunReport {

@@ -27,7 +27,7 @@ import yaml
 from fitting import MODELS, fit_model
 from gran import comparison
 from gran.fits import power_law
-from gran.study import StudyFolder, read_fits
+from gran.studies import StudyFolder, read_fits
 
 HERE = Path(__file__).resolve().parent
 PAPER = yaml.safe_load((HERE / "paper.yaml").read_text())

@@ -1,7 +1,7 @@
 """Reading the McNamara & Falcon 2005 study results, and the physics the figures and checks share.
 
 `Sweep` reads the table and the power-law fits of sweep.yaml (`sweep.study.csv`,
-`sweep.fits.csv`, through gran.study); `Snapshot` one run of snapshots.yaml (trajectory frames and
+`sweep.fits.csv`, through gran.studies); `Snapshot` one run of snapshots.yaml (trajectory frames and
 the vertical density profile, through gran.results). The rest is plain physics: the restitution
 law of Eq. (1), the piston's position (two joined parabolas), and the local packing fraction of
 every disk of a frame from its Voronoi cell, which the Fig. 3 cluster criterion uses.
@@ -13,7 +13,7 @@ import matplotlib.tri as mtri
 import numpy as np
 
 from gran.results import Run
-from gran.study import StudyFolder
+from gran.studies import StudyFolder
 
 # The five cases of sweep.yaml: point name -> (gravity on, restitution as in the paper's panels).
 CASES = {
@@ -138,7 +138,7 @@ class Sweep:
         return lower / (upper + weight), math.hypot(e_lower, e_upper) / (upper + weight)
 
     def exponent(self, case, quantity, n):
-        """The fit of X ~ V^theta (X = T, Nc, dI, P) at n layers (gran.study.StudyFit: theta,
+        """The fit of X ~ V^theta (X = T, Nc, dI, P) at n layers (gran.studies.StudyFit: theta,
         theta_error, max_deviation, valid False when a point deviates by 0.25 or more in log)."""
         return self.study.fit(f"theta_{quantity}_{case}_count{round(n * LAYER)}")
 

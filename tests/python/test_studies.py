@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""gran.study: the study table with its `point` column (from CSV and from .study.h5), fits,
+"""gran.studies: the study table with its `point` column (from CSV and from .study.h5), fits,
 merged study files and trade-offs; a real `gran study` read both ways.
 
-Run: PYTHONPATH=python GRAN_BINARY=build/gran /usr/bin/python3 tests/python/test_study.py
+Run: PYTHONPATH=python GRAN_BINARY=build/gran /usr/bin/python3 tests/python/test_studies.py
 """
 import math
 import os
@@ -16,7 +16,7 @@ import numpy as np
 
 import fixtures
 from gran.fits import power_law
-from gran.study import NoPointColumn, Study, StudyFolder, StudyTable, read_fits
+from gran.studies import NoPointColumn, Study, StudyFolder, StudyTable, read_fits
 
 TABLE = """run,point,interactions.alpha,box.lengths,observables.temperatures.T_mixture,observables.temperatures.T_mixture.error
 hot_alpha0.8,hot,0.8,"[0.2, 0.04]",1.5,0.01
