@@ -7,7 +7,8 @@ JOBS ?= $(shell nproc)
 PY := PYTHONPATH=$(CURDIR)/python /usr/bin/python3
 DEB_PACKAGES := cmake g++ ninja-build pkg-config libeigen3-dev libboost-dev libhdf5-dev libfmt-dev \
   libspdlog-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
-  python3-h5py python3-numpy python3-matplotlib python3-yaml pybind11-dev python3-dev python3-pytest
+  python3-h5py python3-numpy python3-matplotlib python3-yaml pybind11-dev python3-dev python3-pytest \
+  python3-mdanalysis paraview
 # Warnings are errors in CI (CI=true) and whenever GRAN_WERROR=ON is given.
 GRAN_WERROR ?= $(if $(CI),ON,OFF)
 CMAKE_FLAGS ?=

@@ -19,7 +19,9 @@ The figure title is the `title:` of the scene stored in /parameters/scene.
 
 Any number of species, 2D or 3D results, and any subset of observables are handled. The script
 exits with status 1 and a message on stderr when the file is missing or is not a gran result.
-Needs h5py, numpy and matplotlib (Debian: python3-h5py python3-numpy python3-matplotlib).
+The file is read through gran's reader (gran.results.Run, PYTHONPATH=<repository>/python), never
+with h5py directly. Needs numpy and matplotlib, and h5py for the reader (Debian: python3-h5py
+python3-numpy python3-matplotlib).
 """
 
 import argparse
@@ -28,21 +30,60 @@ import sys
 import warnings
 from pathlib import Path
 
-import h5py
 import numpy as np
 from matplotlib.ticker import FormatStrFormatter
 
-from gran.results import (AXES, NotAResult, Run, array_at, as_text, bin_centres, estimate_at,
-                          species_groups, with_error)
+from gran.results import AXES, NotAResult, Run, as_text, with_error
 from gran.style import DPI, GAUSSIAN_LABEL, plt
 
 GAMMAS = ["gamma"] + [f"gamma_{a}" for a in AXES] + ["gamma_rot"]  # the ratios T_s / T_ref
 
 
-def scalar(group, name):
+# --- reading: Run methods by path, None for what the result does not hold -------------------------
+
+
+def optional(read, path, *args):
+    """read(path, *args) with a Run method (run.array, run.estimate, run.histogram, ...), or None
+    when the result does not hold `path` (the Run methods raise KeyError)."""
+    try:
+        return read(path, *args)
+    except KeyError:
+        return None
+
+
+def scalar(run, path):
     """(value, error) of a scalar dataset, or None when absent; error is nan when not recorded."""
-    estimate = estimate_at(group, name)
+    if path is None or is_group(run, path):
+        return None
+    estimate = optional(run.estimate, path)
     return None if estimate is None else tuple(estimate)
+
+
+def observable_path(run, type_name):
+    """The path of the first observable of type `type_name` ('observables/<name>'), or None."""
+    group = run.observable(type_name)
+    return None if group is None else "observables/" + group.name.rsplit("/", 1)[-1]
+
+
+def is_group(run, path):
+    """Whether the result holds a group (not a dataset) at `path`. The reader has no listing, so
+    this and `subgroups` look at the groups under run.root (groups have keys, datasets do not)."""
+    return path is not None and path in run.root and hasattr(run.root[path], "keys")
+
+
+def subgroups(run, path, required=None):
+    """Names of the groups directly below `path` (those holding `required`, when given), in file
+    order: the species of an observable, the species pairs of a `ratios` group. [] when the
+    result holds no group at `path`."""
+    if not is_group(run, path):
+        return []
+    return [name for name, sub in run.root[path].items()
+            if hasattr(sub, "keys") and (required is None or required in sub)]
+
+
+def attribute(run, path, name, default):
+    """An attribute of the group at `path` (e.g. the profiles' `axis`), `default` when absent."""
+    return run.root[path].attrs.get(name, default)
 
 
 def figure_title(run, source_name):
@@ -79,14 +120,20 @@ def plain_log_labels(axis):
 
 
 def plot_temperatures(ax, run):
-    obs = run.observable("temperatures")
-    time = array_at(obs, "time")
+    obs = observable_path(run, "temperatures")
+    time = None if obs is None else optional(run.array, f"{obs}/time")
     if time is None or time.size == 0:
         return False
-    curves = [(name, array_at(g, "series/T"), scalar(g, "T"))
-              for name, g in species_groups(obs, "series").items()]
+
+    def series_of(path):
+        curve = optional(run.series, path)
+        return None if curve is None else curve.value
+
+    curves = [(name, series_of(f"{obs}/{name}/series/T"), scalar(run, f"{obs}/{name}/T"))
+              for name in subgroups(run, obs, "series")]
     if len(curves) > 1:
-        curves.append(("mixture", array_at(obs, "series/T_mixture"), scalar(obs, "T_mixture")))
+        curves.append(("mixture", series_of(f"{obs}/series/T_mixture"),
+                       scalar(run, f"{obs}/T_mixture")))
     drawn = False
     for name, series, mean in curves:
         if series is None or series.size != time.size:
@@ -113,19 +160,18 @@ def plot_temperatures(ax, run):
 
 
 def plot_velocity_pdfs(ax, run):
-    obs = run.observable("velocity_pdf")
+    obs = observable_path(run, "velocity_pdf")
     if obs is None:
         return False
     lowest = math.inf
-    for name, g in species_groups(obs, "x").items():
-        axis = g["x"]
-        edges, density = array_at(axis, "scaled_edges"), array_at(axis, "scaled_density")
-        if edges is None or density is None:
+    for name in subgroups(run, obs, "x"):
+        axis = f"{obs}/{name}/x"
+        histogram = optional(run.histogram, axis, "scaled_")  # the rescaled P(c_x)
+        if histogram is None:
             continue
-        error = array_at(axis, "scaled_error")
-        c = bin_centres(edges)
+        c, density, error = histogram.curve()
         shown = density > 0  # empty bins cannot be drawn on a log axis
-        kurt = scalar(axis, "kurtosis")
+        kurt = scalar(run, f"{axis}/kurtosis")
         label = name if kurt is None else f"{name} (kurtosis {with_error(*kurt)})"
         ax.errorbar(c[shown], density[shown], yerr=None if error is None else error[shown],
                     fmt="o", ms=2.5, capsize=1.5, lw=0.8, label=label)
@@ -144,8 +190,11 @@ def plot_velocity_pdfs(ax, run):
 
 
 def plot_kinetic_energy(ax, run):
-    obs = run.observable("kinetic_energy")
-    time, energy = array_at(obs, "time"), array_at(obs, "energy_per_particle")
+    obs = observable_path(run, "kinetic_energy")
+    if obs is None:
+        return False
+    time = optional(run.array, f"{obs}/time")
+    energy = optional(run.array, f"{obs}/energy_per_particle")
     if time is None or energy is None or time.size == 0:
         return False
     shown = (time > 0) & (energy > 0)
@@ -153,7 +202,7 @@ def plot_kinetic_energy(ax, run):
     if t.size == 0:
         return False
     ax.loglog(t, e, lw=1.0, label="kinetic energy per particle")
-    measuring = array_at(obs, "measuring")
+    measuring = optional(run.array, f"{obs}/measuring")
     if measuring is not None and measuring.size == time.size and measuring.any():
         start = time[np.argmax(measuring > 0)]
         if start > t[0]:
@@ -171,36 +220,39 @@ def plot_kinetic_energy(ax, run):
     return True
 
 
-def ratio_lines(ratios, where=""):
-    """The temperature ratios gamma (total, per component, rotational) of each species pair in a
-    `ratios` group (None: none)."""
+def ratio_lines(run, ratios, where=""):
+    """The temperature ratios gamma (total, per component, rotational) of each species pair in the
+    `ratios` group at path `ratios` (absent: none)."""
     lines = []
-    for ratio, g in (ratios.items() if isinstance(ratios, h5py.Group) else []):
+    for ratio in subgroups(run, ratios):
         lines.append(f"{ratio.replace('_over_', ' / ')}{where}:")
-        lines += [f"    {key} = {with_error(*scalar(g, key))}" for key in GAMMAS
-                  if scalar(g, key) is not None]
+        for key in GAMMAS:
+            gamma = scalar(run, f"{ratios}/{ratio}/{key}")
+            if gamma is not None:
+                lines.append(f"    {key} = {with_error(*gamma)}")
     return lines
 
 
 def summary_lines(run):
     """The lines of the text panel (empty when nothing is known)."""
     lines = []
-    temps = run.observable("temperatures")
+    temps = observable_path(run, "temperatures")
     if temps is not None:
-        for name, g in species_groups(temps, "T").items():
-            parts = [f"T = {with_error(*scalar(g, 'T'))}"]
+        for name in subgroups(run, temps, "T"):
+            parts = [f"T = {with_error(*scalar(run, f'{temps}/{name}/T'))}"]
             for key, label in (("T_rot", "T_rot"), ("sonine_a2", "a2")):
-                if scalar(g, key) is not None:
-                    parts.append(f"{label} = {with_error(*scalar(g, key))}")
+                value = scalar(run, f"{temps}/{name}/{key}")
+                if value is not None:
+                    parts.append(f"{label} = {with_error(*value)}")
             lines.append(f"{name}: " + ",  ".join(parts))
-        lines += ratio_lines(temps.get("ratios"))
-    prof = run.observable("profiles")
-    middle = prof.get("middle") if prof is not None else None
-    if isinstance(middle, h5py.Group):
-        lines += ratio_lines(middle.get("ratios"), " in the middle of the cell")
-    coll = run.observable("collision_statistics")
-    if scalar(coll, "frequency_per_particle") is not None:
-        freq = with_error(*scalar(coll, "frequency_per_particle"))
+        lines += ratio_lines(run, f"{temps}/ratios")
+    prof = observable_path(run, "profiles")
+    if prof is not None:
+        lines += ratio_lines(run, f"{prof}/middle/ratios", " in the middle of the cell")
+    coll = observable_path(run, "collision_statistics")
+    frequency = None if coll is None else scalar(run, f"{coll}/frequency_per_particle")
+    if frequency is not None:
+        freq = with_error(*frequency)
         lines.append(f"collision frequency per particle: {freq} / time")
     perf = run.performance
     if "events_per_second" in perf:
@@ -223,16 +275,18 @@ def plot_summary(ax, run):
 
 def plot_profiles(ax, run):
     """Packing fraction (solid) and temperature (dashed, right axis) across the cell, per species."""
-    obs = run.observable("profiles")
-    y = array_at(obs, "position")
+    obs = observable_path(run, "profiles")
+    y = None if obs is None else optional(run.array, f"{obs}/position")
     if y is None:
         return False
     twin = ax.twinx()
-    for k, (name, g) in enumerate(species_groups(obs, "packing_fraction").items()):
+    for k, name in enumerate(subgroups(run, obs, "packing_fraction")):
         colour = f"C{k}"
-        ax.plot(y, array_at(g, "packing_fraction"), color=colour, label=f"{name}: packing fraction")
-        twin.plot(y, array_at(g, "T"), color=colour, ls="--", label=f"{name}: T")
-    axis = as_text(obs.attrs.get("axis", "y"))
+        ax.plot(y, run.profile(f"{obs}/{name}/packing_fraction").value, color=colour,
+                label=f"{name}: packing fraction")
+        twin.plot(y, run.profile(f"{obs}/{name}/T").value, color=colour, ls="--",
+                  label=f"{name}: T")
+    axis = as_text(attribute(run, obs, "axis", "y"))
     ax.set_xlabel(axis)
     ax.set_ylabel("packing fraction (solid)")
     twin.set_ylabel("temperature T (dashed)")
@@ -245,23 +299,22 @@ def plot_profiles(ax, run):
 
 def plot_profile_ratios(ax, run):
     """Temperature ratios gamma(y), per component, with the central window shaded."""
-    obs = run.observable("profiles")
-    y = array_at(obs, "position")
-    ratios = obs.get("ratios") if obs is not None else None
-    if y is None or not isinstance(ratios, h5py.Group):
+    obs = observable_path(run, "profiles")
+    y = None if obs is None else optional(run.array, f"{obs}/position")
+    ratios = f"{obs}/ratios"
+    if y is None or not is_group(run, ratios):
         return False
-    for ratio, g in ratios.items():
+    for ratio in subgroups(run, ratios):
         for key in GAMMAS:
-            values = array_at(g, key)
-            if values is None:
+            profile = optional(run.profile, f"{obs}/ratios/{ratio}/{key}")  # with its _error
+            if profile is None:
                 continue
-            errors = array_at(g, key + "_error")
-            ax.errorbar(y, values, yerr=errors, marker=".", lw=1, capsize=2,
+            ax.errorbar(y, profile.value, yerr=profile.error, marker=".", lw=1, capsize=2,
                         label=f"{key} ({ratio.replace('_over_', '/')})")
-    window = float(obs.attrs.get("middle_window", 0.2))
+    window = float(attribute(run, obs, "middle_window", 0.2))
     length = float(y[0] + y[-1])
     ax.axvspan(0.5 * (1 - window) * length, 0.5 * (1 + window) * length, color="0.9", label="middle window")
-    ax.set_xlabel(as_text(obs.attrs.get("axis", "y")))
+    ax.set_xlabel(as_text(attribute(run, obs, "axis", "y")))
     ax.set_ylabel("temperature ratio")
     ax.set_title("Temperature ratios across the cell")
     ax.legend(fontsize="small")

@@ -512,6 +512,17 @@ std::string Group::read_attr_string(const std::string& name) const {
     });
 }
 
+void Group::external_link(const std::string& name, const std::string& file,
+                          const std::string& object) {
+    const std::string w = where(name);
+    if (link_exists(id_.get(), name))
+        check(H5Ldelete(id_.get(), name.c_str(), H5P_DEFAULT), "replace", w);
+    const Handle lcpl = nested_link_props(w);
+    check(H5Lcreate_external(file.c_str(), object.c_str(), id_.get(), name.c_str(), lcpl.get(),
+                             H5P_DEFAULT),
+          "create external link", w);
+}
+
 std::vector<std::size_t> Group::shape(const std::string& name) const {
     const std::string w = where(name);
     const Handle dset = own(H5Dopen2(id_.get(), name.c_str(), H5P_DEFAULT), "open dataset", w);

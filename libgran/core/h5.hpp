@@ -112,6 +112,9 @@ class Group {
     template <class T>
     Appendable appendable(const std::string& name, std::vector<std::size_t> row_shape = {});
     void write_string(const std::string& name, const std::string& value);  // scalar vlen UTF-8
+    // A link `name` to the object `object` (absolute) of the file `file`; a relative `file` is
+    // looked for in this file's folder (where the trajectory sits beside its result).
+    void external_link(const std::string& name, const std::string& file, const std::string& object);
     void write_strings(const std::string& name, const std::vector<std::string>& values);
 
     // Attributes on this group; an existing attribute of the same name is replaced.

@@ -8,7 +8,13 @@
 #include <cstring>
 #include <filesystem>
 
+#include "libgran/run/result_sink.hpp"
+
 namespace gran {
+
+bool FrameBox::any_periodic() const {
+    return std::find(boundary.begin(), boundary.end(), "periodic") != boundary.end();
+}
 
 FrameBox frame_box(const Scene& sc) {
     FrameBox box;
@@ -38,11 +44,16 @@ bool FrameWriter::due(std::size_t samples_taken) const {
     return every_ > 0 && samples_taken % every_ == 0 && frames_ < limit_;
 }
 
+// Per frame: time, step, positions, velocities, [images], [angular velocities].
 std::size_t FrameWriter::frame_bytes() const {
-    return sizeof(double) * (1 + 2 * particles_ * std::size_t(box_.dimension));
+    const std::size_t nd = layout_.particles * layout_.dimension;
+    return sizeof(double) + sizeof(std::int64_t) + 2 * nd * sizeof(double) +
+           (layout_.images ? nd * sizeof(std::int32_t) : 0) +
+           layout_.particles * layout_.angular_width * sizeof(double);
 }
+// Header: particles, images flag, angular width, species.
 std::size_t FrameWriter::header_bytes() const {
-    return sizeof(std::uint64_t) + sizeof(std::int64_t) * particles_;
+    return 3 * sizeof(std::uint64_t) + sizeof(std::int64_t) * layout_.particles;
 }
 
 void FrameWriter::put(const void* data, std::size_t bytes) {
@@ -60,19 +71,25 @@ void FrameWriter::open_journal(bool existing) {
     }
 }
 
-void FrameWriter::append(double time, std::span<const double> positions,
-                         std::span<const double> velocities,
-                         std::span<const std::int64_t> species) {
+void FrameWriter::append(const Frame& f) {
     if (!file_) {
-        particles_ = species.size();
+        layout_.particles = f.species.size();
+        layout_.dimension = std::size_t(box_.dimension);
+        layout_.images = box_.any_periodic();
+        layout_.angular_width = layout_.particles ? f.angular.size() / layout_.particles : 0;
         open_journal(false);
-        const std::uint64_t n = particles_;
-        put(&n, sizeof n);
-        put(species.data(), species.size_bytes());
+        const std::uint64_t header[3] = {layout_.particles, layout_.images ? 1u : 0u,
+                                         layout_.angular_width};
+        put(header, sizeof header);
+        put(f.species.data(), f.species.size() * sizeof(std::int64_t));
     }
-    put(&time, sizeof time);
-    put(positions.data(), positions.size_bytes());
-    put(velocities.data(), velocities.size_bytes());
+    const std::size_t nd = layout_.particles * layout_.dimension;
+    put(&f.time, sizeof f.time);
+    put(&f.step, sizeof f.step);
+    put(f.positions.data(), nd * sizeof(double));
+    put(f.velocities.data(), nd * sizeof(double));
+    if (layout_.images) put(f.images.data(), nd * sizeof(std::int32_t));
+    if (layout_.angular_width) put(f.angular.data(), f.angular.size() * sizeof(double));
     ++frames_;
 }
 
@@ -87,7 +104,10 @@ void FrameWriter::sync() {
 void FrameWriter::checkpoint(StateArchive& ar) {
     ar.section("frames");
     ar.io(frames_);
-    ar.io(particles_);
+    ar.io(layout_.particles);
+    ar.io(layout_.dimension);
+    ar.io(layout_.images);
+    ar.io(layout_.angular_width);
     if (!ar.loading() || frames_ == 0) return;
     // Resuming: the frames the checkpoint counted are in the journal (synced before it was
     // written); anything after them was written by the killed run and is cut off.
@@ -105,56 +125,43 @@ void FrameWriter::checkpoint(StateArchive& ar) {
     std::fseek(file_, 0, SEEK_END);
 }
 
-void FrameWriter::write(ResultGroup root) {
-    if (frames_ == 0) return;
-    sync();
+namespace {
+void get(std::FILE* in, void* data, std::size_t bytes, const std::string& journal) {
+    if (bytes > 0 && std::fread(data, 1, bytes, in) != bytes)
+        throw OutputError(fmt::format("the frames journal '{}' ends early", journal));
+}
+}  // namespace
+
+std::FILE* FrameWriter::open_for_reading(std::vector<std::int64_t>& species) {
     std::FILE* in = std::fopen(journal_.c_str(), "rb");
     if (!in) {
         throw OutputError(
             fmt::format("cannot read the frames journal '{}': {}", journal_, std::strerror(errno)));
     }
-    auto get = [&](void* data, std::size_t bytes) {
-        if (std::fread(data, 1, bytes, in) != bytes) {
-            std::fclose(in);
-            throw OutputError(fmt::format("the frames journal '{}' ends early", journal_));
-        }
-    };
-    const std::size_t n = particles_, d = std::size_t(box_.dimension);
-    std::uint64_t n_file = 0;
-    get(&n_file, sizeof n_file);
-    std::vector<std::int64_t> species(n);
-    get(species.data(), species.size() * sizeof(std::int64_t));
-
-    ResultGroup all = root.file_only().group("particles").group("all");
-    ResultGroup b = all.group("box");
-    b.attr("dimension", box_.dimension);
-    b.attr("boundary", box_.boundary);
-    b.array("edges", box_.edges);
-    all.array("species", std::span<const std::int64_t>(species));
-    struct Quantity {
-        h5::Appendable value, time, step;
-    };
-    auto open_quantity = [&](const std::string& name) {
-        ResultGroup q = all.group(name);
-        return Quantity{q.series<double>("value", {n, d}), q.series<double>("time"),
-                        q.series<std::int64_t>("step")};
-    };
-    Quantity position = open_quantity("position"), velocity = open_quantity("velocity");
-    std::vector<double> r(n * d), v(n * d);
-    for (std::size_t f = 0; f < frames_; ++f) {
-        double time = 0;
-        get(&time, sizeof time);
-        get(r.data(), r.size() * sizeof(double));
-        get(v.data(), v.size() * sizeof(double));
-        const std::int64_t step = std::int64_t(f);
-        for (auto [q, values] : {std::pair{&position, std::span<const double>(r)},
-                                 std::pair{&velocity, std::span<const double>(v)}}) {
-            q->value.append(values);
-            q->time.append(std::span<const double>(&time, 1));
-            q->step.append(std::span<const std::int64_t>(&step, 1));
-        }
+    std::uint64_t header[3] = {};
+    species.resize(layout_.particles);
+    try {
+        get(in, header, sizeof header, journal_);
+        get(in, species.data(), species.size() * sizeof(std::int64_t), journal_);
+    } catch (...) {
+        std::fclose(in);
+        throw;
     }
-    std::fclose(in);
+    return in;
+}
+
+void FrameWriter::read_frame(std::FILE* in, Frame& f) {
+    const std::size_t nd = layout_.particles * layout_.dimension;
+    f.positions.resize(nd);
+    f.velocities.resize(nd);
+    f.images.assign(nd, 0);
+    f.angular.resize(layout_.particles * layout_.angular_width);
+    get(in, &f.time, sizeof f.time, journal_);
+    get(in, &f.step, sizeof f.step, journal_);
+    get(in, f.positions.data(), nd * sizeof(double), journal_);
+    get(in, f.velocities.data(), nd * sizeof(double), journal_);
+    if (layout_.images) get(in, f.images.data(), nd * sizeof(std::int32_t), journal_);
+    get(in, f.angular.data(), f.angular.size() * sizeof(double), journal_);
 }
 
 void FrameWriter::remove() {

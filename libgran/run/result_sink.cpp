@@ -219,6 +219,10 @@ void check_output_path(const std::string& output, const std::vector<std::string>
     probe_writable(folder, output);
 }
 
+void write_synced_text(const std::string& path, const std::string& text) {
+    write_text(path, text);
+}
+
 ResultSink::ResultSink(std::string output)
     : output_(std::move(output)),
       part_(output_ + ".part"),
@@ -245,12 +249,10 @@ void ResultSink::finish(bool completed) {
         for (const auto& q : unreliable_) summary_["unreliable"].push_back(q);
     }
     // A run that did not complete never replaces a completed result: it goes beside it.
-    if (!completed && completed_result(output_)) {
-        written_ = partial_path_for(output_);
+    written_ = destination(completed);
+    if (written_ != output_) {
         summary_file_ = summary_path_for(written_);
         summary_["result"] = written_;
-    } else {
-        written_ = output_;
     }
     // Every step checked, the renames last: a failure (full disk, I/O error) leaves the .part
     // files and whatever was at the final names before.
@@ -262,8 +264,20 @@ void ResultSink::finish(bool completed) {
     write_text(summary_part,
                std::string("# gran run summary (values with one-standard-error bars)\n") +
                    em.c_str() + "\n");
+    for (const auto& [part, final_path] : companions_) {
+        sync_file(part);
+        rename_or_throw(part, final_path);
+    }
     rename_or_throw(part_, written_);
     rename_or_throw(summary_part, summary_file_);
+}
+
+std::string ResultSink::destination(bool completed) const {
+    return !completed && completed_result(output_) ? partial_path_for(output_) : output_;
+}
+
+void ResultSink::add_companion(std::string part, std::string final_path) {
+    companions_.emplace_back(std::move(part), std::move(final_path));
 }
 
 }  // namespace gran

@@ -85,6 +85,11 @@ class ResultGroup {
         if (!unit.empty()) file_.attr_on(name, "unit", unit);
         return a;
     }
+    // A link to an object of another file (h5::Group::external_link).
+    void external_link(const std::string& name, const std::string& file,
+                       const std::string& object) {
+        file_.external_link(name, file, object);
+    }
     void text_dataset(const std::string& name, const std::string& v) {
         file_.write_string(name, v);
     }
@@ -140,6 +145,13 @@ class ResultSink {
     // Estimates written so far whose value or error is not finite (paths in the result file). A
     // run with any has status `unreliable` instead of `completed` (finish()).
     const std::vector<std::string>& unreliable() const { return unreliable_; }
+    // Where finish(completed) puts the result: OUT.h5, or OUT.partial.h5 for a run that did not
+    // complete when OUT.h5 holds a completed result.
+    std::string destination(bool completed) const;
+    // A file that goes with the result (the trajectory and its XDMF sidecar), already written
+    // complete to `part`: finish() syncs and renames it to `final_path` before the result itself,
+    // so a result never names a companion that is not there.
+    void add_companion(std::string part, std::string final_path);
     // Where the result and its summary went (after finish()).
     const std::string& written() const { return written_; }
     const std::string& summary_file() const { return summary_file_; }
@@ -153,7 +165,11 @@ class ResultSink {
     h5::File file_;
     YAML::Node summary_;
     std::vector<std::string> unreliable_;
+    std::vector<std::pair<std::string, std::string>> companions_;  // part, final path
 };
+
+// A text file written and synced to disk (OutputError naming the path and the cause).
+void write_synced_text(const std::string& path, const std::string& text);
 
 // OUT.summary.yaml beside OUT.h5.
 std::string summary_path_for(const std::string& output);

@@ -19,6 +19,7 @@
 #include "libgran/run/result_file.hpp"
 #include "libgran/run/result_sink.hpp"
 #include "libgran/run/simulation.hpp"
+#include "libgran/run/trajectory.hpp"
 #include "libgran/run/watchdog.hpp"
 
 namespace gran {
@@ -259,8 +260,8 @@ class ScheduleLoop {
         ++out_.samples;
         out_.measured_energy.push_back(view.kinetic_energy_per_particle(sc_.species));
         if (frames_.due(out_.samples)) {
-            frame_of<D>(view, positions_, velocities_, species_);
-            frames_.append(runner_.now(), positions_, velocities_, species_);
+            frame_of<D>(view, std::int64_t(runner_.work()), frame_);
+            frames_.append(frame_);
         }
         if (opt_.on_sample) opt_.on_sample(out_.samples, runner_.now());
     }
@@ -281,8 +282,7 @@ class ScheduleLoop {
     double checkpoint_seconds_ = 0;  // wall-clock s spent writing them
     std::chrono::steady_clock::time_point last_checkpoint_;
     std::uint64_t chunk_ = 1024;  // engine work per advance call (advance_in_chunks)
-    std::vector<double> positions_, velocities_;  // one frame, reused
-    std::vector<std::int64_t> species_;
+    Frame frame_;  // one frame, reused
 };
 
 // /observables, /drivers and /performance (with the summary's observables, drivers, performance).
@@ -368,7 +368,8 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     totals.completed = !out.stopped();
     totals.interrupted = out.interrupted;
     totals.watchdog_stop = out.watchdog_stop;
-    loop.frames().write(sink.root());  // before the summary's `particles` (file only)
+    write_trajectory(loop.frames(), sink, sink.destination(totals.completed), sc,
+                     opt.command_line, runner.work_unit());
     write_summary_header(sink.summary(), sc, opt.output, out.status(), out.watchdog_stop, n);
     write_results<D>(sink.root(), sc, runner, st.drivers, st.observables, out, totals);
     if (const YAML::Node h = headline(sink.summary()); h.size() > 0) sink.summary()["headline"] = h;

@@ -314,9 +314,40 @@ class Run:
         """Number of stored trajectory frames."""
         return self._node("particles/all/position/value").shape[0]
 
-    def positions(self, k):
-        """Particle positions of frame k, shape (N, dimension)."""
-        return self._node("particles/all/position/value")[k]
+    def positions(self, k, unwrapped=False):
+        """Particle positions of frame k, shape (N, dimension), wrapped into the box; with
+        `unwrapped`, plus image * L on periodic axes (the distance actually travelled)."""
+        r = self._node("particles/all/position/value")[k]
+        if not unwrapped or "image" not in self.root["particles/all"]:
+            return r
+        return r + self.images(k) * self.box_lengths
+
+    def velocities(self, k):
+        """Particle velocities of frame k, shape (N, dimension)."""
+        return self._node("particles/all/velocity/value")[k]
+
+    def images(self, k):
+        """Periodic images of frame k (N, dimension): crossings of each periodic axis (+1 out
+        through L); zeros when no axis is periodic."""
+        if "image" not in self.root["particles/all"]:
+            return np.zeros_like(self.positions(k), dtype=np.int64)
+        return self._node("particles/all/image/value")[k]
+
+    def angular_velocities(self, k):
+        """Angular velocities of frame k: (N, 1) in 2D, (N, 3) in 3D; None when grains do not
+        rotate."""
+        if "angular_velocity" not in self.root["particles/all"]:
+            return None
+        return self._node("particles/all/angular_velocity/value")[k]
+
+    def frame_step(self, k):
+        """The engine's events (event_driven) or steps (dem) at frame k."""
+        return int(self._node("particles/all/position/step")[k])
+
+    @property
+    def particle_species(self):
+        """Species index of every particle of the trajectory (N,)."""
+        return self._node("particles/all/species")[()]
 
     def frame_time(self, k):
         """Time of frame k."""
@@ -324,5 +355,12 @@ class Run:
 
     @property
     def box_lengths(self):
-        """Box edge lengths of the trajectory (H5MD /particles/all/box/edges)."""
-        return self.array("particles/all/box/edges")
+        """Box edge lengths of the trajectory (H5MD /particles/all/box/edges: a D x D matrix of
+        edge vectors per frame, or a vector in older files)."""
+        edges = self.root["particles/all/box/edges"]
+        if isinstance(edges, h5py.Group):  # time-dependent: the box of the first frame
+            edges = edges["value"][0]
+        else:
+            edges = edges[()]
+        edges = np.asarray(edges, dtype=float)
+        return np.diag(edges) if edges.ndim == 2 else edges

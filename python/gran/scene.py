@@ -112,12 +112,15 @@ class Scene:
         validates the result; returns the scene, so calls chain. A refused value raises
         SceneError and leaves the scene as it was."""
         assignment = f"{key}={yaml_value(value)}"
+        before = list(self._overrides)
+        # A key set again replaces its earlier assignment (a sweep does not pile them up).
+        self._overrides = [a for a in self._overrides if a.split("=", 1)[0] != key]
         self._overrides.append(assignment)
         self._loaded = None
         try:
             self.native()
         except SceneError:
-            self._overrides.pop()
+            self._overrides = before
             self._loaded = None
             raise
         return self

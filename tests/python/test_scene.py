@@ -39,6 +39,9 @@ class SceneTest(fixtures.TempDirTest):
         self.assertEqual(resolved["species"][0]["mass"], 5)
         self.assertEqual(resolved["run"]["measurement"], 100)
         self.assertEqual(scene.overrides, ["species.0.mass=5", "run.measurement=100"])
+        scene.set("species.0.mass", 7)  # a key set again replaces its assignment
+        self.assertEqual(scene.overrides, ["run.measurement=100", "species.0.mass=7"])
+        self.assertEqual(scene.resolved["species"][0]["mass"], 7)
 
     def test_a_refused_value_names_the_key_and_leaves_the_scene_unchanged(self):
         scene = gran.Scene.load(DEMO)

@@ -3,7 +3,8 @@
 
 Compares every `<run>.h5` present in both folders with check_regression.compare (datasets and
 attributes under /observables, /particles and /drivers, bit for bit; /parameters and /performance
-are not compared). Study files (`*.study.h5`) are skipped: they hold copies of the run files.
+are not compared). Study files (`*.study.h5`) are skipped: they hold copies of the run files; so are trajectories
+(`*.trajectory.h5`), compared through the `/particles` link of their result.
 
     compare_result_dirs.py NEW_DIR OLD_DIR [--allow REGEX ...]
 
@@ -26,8 +27,11 @@ def main():
     ap.add_argument("--allow", action="append", default=[])
     a = ap.parse_args()
     allowed = [re.compile(r) for r in a.allow]  # searched in ":<item>"
-    new = {p.name for p in pathlib.Path(a.new).glob("*.h5") if not p.name.endswith(".study.h5")}
-    old = {p.name for p in pathlib.Path(a.old).glob("*.h5") if not p.name.endswith(".study.h5")}
+    def runs(folder):  # trajectories are compared through their result's /particles link
+        return {p.name for p in pathlib.Path(folder).glob("*.h5")
+                if not p.name.endswith((".study.h5", ".trajectory.h5"))}
+
+    new, old = runs(a.new), runs(a.old)
     failed = matched = items = added_total = 0
     for name in sorted(new & old):
         problems, n, added = compare(pathlib.Path(a.new) / name, pathlib.Path(a.old) / name,

@@ -57,6 +57,7 @@ template <int D>
 DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
                         const ContactTable& contacts, Particles<D> particles, DemSettings settings)
     : box_(box), contacts_(contacts), p_(std::move(particles)), settings_(settings) {
+    p_.image.resize(p_.size());  // particles built by hand (tests) may leave it empty
     const std::size_t ns = species.size();
     if (ns == 0 || contacts_.species != ns) {
         fail("the contact table has " + std::to_string(contacts_.species) +
@@ -218,6 +219,7 @@ void DemEngine<D>::step() {
     Vec<D>* v_pred = v_pred_.data();
     Vec<D>* f = f_.data();
     Vec<D>* disp = disp_.data();
+    std::array<std::int32_t, D>* image = p_.image.data();
     double max_disp2 = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const Vec<D> a = inv_mass[species[i]] * f[i] + g;
@@ -235,8 +237,10 @@ void DemEngine<D>::step() {
             if (x < 0) {
                 x += L;
                 if (x >= L) x = 0;  // -tiny + L rounded to L
+                --image[i][k];
             } else if (x >= L) {
                 x -= L;
+                ++image[i][k];
             }
         }
     }

@@ -11,6 +11,7 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
                                         const ContactTable& contacts, Particles<D> particles,
                                         EngineSettings settings)
     : box_(box), p_(std::move(particles)), settings_(settings), contacts_(contacts) {
+    p_.image.resize(p_.size());  // particles built by hand (tests) may leave it empty
     const auto* loops = Registry<EventDrivenLawLoops<D>>::instance().find(contacts_.law->name);
     if (!loops || !contacts_.law->hard_sphere) {
         throw std::invalid_argument("EventDrivenEngine: law '" + contacts_.law->name +
@@ -341,8 +342,10 @@ void EventDrivenEngine<D>::cross_cell(std::uint32_t i, int code) {
     const int wrap = cells_.cross(i, a, dir);
     if (wrap > 0) {
         p_.r[i][a] -= box_.length[a];
+        ++p_.image[i][std::size_t(a)];
     } else if (wrap < 0) {
         p_.r[i][a] += box_.length[a];
+        --p_.image[i][std::size_t(a)];
     }
     ++counters_.cell_crossings;
     if (cells_.cells(a) == 1) {

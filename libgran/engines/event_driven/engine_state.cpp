@@ -46,6 +46,7 @@ void EventDrivenEngine<D>::sort_by_cell() {
     apply_order(p_.t, order);
     apply_order(p_.species, order);
     apply_order(p_.w, order);
+    apply_order(p_.image, order);
     apply_order(id_, order);
     apply_order(count_, order);
     apply_order(last_collision_, order);

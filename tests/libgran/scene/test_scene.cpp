@@ -111,7 +111,8 @@ output: {frames: 120}
     EXPECT_EQ(g.read_int64s("position/step").size(), 120u);
     auto box = g.group("box");
     EXPECT_EQ(box.read_attr_double("dimension"), 3.0);
-    const auto edges = box.read_doubles("edges");
+    const auto edge_vectors = box.read_doubles("edges/value");  // frames x 3 x 3, diagonal
+    const double edges[3] = {edge_vectors[0], edge_vectors[4], edge_vectors[8]};
     const auto x = g.read_doubles("position/value");
     double worst_mean = 0;
     for (std::size_t f = 0; f + 1 < shape[0]; ++f) {
