@@ -24,6 +24,7 @@
 #include "libgran/run/checkpoint.hpp"
 #include "libgran/run/run.hpp"
 #include "libgran/run/simulation.hpp"
+#include "libgran/run/xyz_export.hpp"
 #include "libgran/scene/scene.hpp"
 #include "libgran/scene/scene_reference.hpp"
 #include "libgran/study/knob.hpp"
@@ -89,6 +90,15 @@ written by another code version, for another scene, damaged or missing is refuse
 `gran run --recover OUT.h5`: writes what a killed run had measured up to its last checkpoint to
 `OUT.h5` (status `interrupted`, exit 3) without running; the checkpoint is kept, so
 `gran run --resume OUT.h5` still continues the run, bit for bit.
+
+`output.frames` writes the trajectory beside the result: `OUT.trajectory.h5` (H5MD: positions,
+velocities, periodic images, angular velocities, box, species, mass, diameter; MDAnalysis reads it)
+and `OUT.trajectory.xdmf` (ParaView opens it); `/particles` of `OUT.h5` links to it. See
+[python.md](python.md#trajectories).
+
+`gran export --xyz OUT.h5 [-o FILE.xyz]`: the trajectory as extended XYZ for OVITO, ASE or VMD
+(default `OUT.xyz`): per frame the box (`Lattice`, `pbc`), time and step, then species, position,
+velocity and radius of every particle.
 
 `gran check SCENE.yaml [--set ...]`: every check `gran run` makes (the contacts, what the engine can
 do, the drivers' and observables' cross-references, the initial placement), without running.
@@ -242,6 +252,9 @@ struct CommandLine {
     // list
     std::string what;
     bool markdown = false;
+    // export
+    std::string export_input, export_output;
+    bool xyz = false;
 };
 
 CLI::App* add_run(CLI::App& app, CommandLine& cl) {
@@ -322,6 +335,36 @@ CLI::App* add_list(CLI::App& app, CommandLine& cl) {
         "--markdown", cl.markdown,
         "print Markdown: with no category, the page docs/scene-reference.md (make docs)");
     return list;
+}
+
+CLI::App* add_export(CLI::App& app, CommandLine& cl) {
+    auto* ex = app.add_subcommand(
+        "export", "convert a run's trajectory frames for other tools (--xyz: extended XYZ)");
+    ex->add_option("result", cl.export_input, "the result file (OUT.h5) or its OUT.trajectory.h5")
+        ->required();
+    ex->add_flag("--xyz", cl.xyz, "extended XYZ (OVITO, ASE, VMD)")->required();
+    ex->add_option("-o,--output", cl.export_output, "the file to write (default OUT.xyz)");
+    return ex;
+}
+
+// `gran export --xyz RESULT.h5 [-o OUT.xyz]`.
+int cmd_export(const CommandLine& cl) {
+    std::string out = cl.export_output;
+    if (out.empty()) {
+        std::filesystem::path p(cl.export_input);
+        std::string stem = p.stem().string();
+        if (stem.size() > 11 && stem.substr(stem.size() - 11) == ".trajectory")
+            stem.resize(stem.size() - 11);
+        out = (p.parent_path() / stem).string() + ".xyz";
+    }
+    try {
+        const std::size_t frames = gran::export_xyz(cl.export_input, out);
+        std::cout << fmt::format("{}: {} frames\n", out, frames);
+        return 0;
+    } catch (const std::exception& e) {
+        std::cerr << "gran: error: " << e.what() << "\n";
+        return 1;
+    }
 }
 
 std::string human_time(double s) {
@@ -489,6 +532,7 @@ int main(int argc, char** argv) {
     const CLI::App* study = add_study(app, cl);
     const CLI::App* tradeoff = add_tradeoff(app, cl);
     const CLI::App* list = add_list(app, cl);
+    const CLI::App* exporter = add_export(app, cl);
 
     try {
         app.parse(argc, argv);
@@ -501,6 +545,7 @@ int main(int argc, char** argv) {
     spdlog::set_pattern("[%H:%M:%S] [%^%l%$] %v");
 
     if (list->parsed()) return cmd_list(cl.what, cl.markdown);
+    if (exporter->parsed()) return cmd_export(cl);
     if (study->parsed())
         return cmd_study(cl.study_file, cl.study_out, cl.jobs, cl.quiet, cl.reuse_any_version);
     if (tradeoff->parsed())
