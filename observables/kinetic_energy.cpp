@@ -17,6 +17,7 @@ class KineticEnergy final : public Observable<D> {
         const double per = ctx.engine.kinetic_energy_per_particle(table_);
         const std::size_t n = ctx.engine.particles().size();
         time_.push_back(ctx.time);
+        steps_.push_back(ctx.step);
         energy_.push_back(per);
         phase_.push_back(ctx.measuring ? 1 : 0);
         cpp_.push_back(2.0 * double(ctx.engine.collisions()) / double(n));
@@ -24,10 +25,10 @@ class KineticEnergy final : public Observable<D> {
     }
 
     void write(ResultGroup& out) const override {
-        out.array("time", time_, "time");
-        out.array("energy_per_particle", energy_, "energy");
-        out.array("collisions_per_particle", cpp_);
-        out.array("measuring", phase_);
+        // H5MD time series {step, time, value} sharing one step and time.
+        out.time_series("energy_per_particle", steps_, time_, energy_, "energy");
+        out.time_series("collisions_per_particle", steps_, time_, cpp_, "", "energy_per_particle");
+        out.time_series("measuring", steps_, time_, phase_, "", "energy_per_particle");
         if (measured_.size() > 0)
             out.estimate("mean_energy_per_particle", measured_.estimate(), "energy");
     }
@@ -35,6 +36,7 @@ class KineticEnergy final : public Observable<D> {
     void checkpoint(StateArchive& ar) override {
         ar.section("kinetic_energy");
         ar.io(time_);
+        ar.io(steps_);
         ar.io(energy_);
         ar.io(cpp_);
         ar.io(phase_);
@@ -44,14 +46,15 @@ class KineticEnergy final : public Observable<D> {
   private:
     const SpeciesTable& table_;
     std::vector<double> time_, energy_, cpp_;
-    std::vector<std::int64_t> phase_;
+    std::vector<std::int64_t> phase_, steps_;
     Series measured_;
 };
 
 const char* const kDescription =
     R"md(
 Kinetic energy per particle (translational + rotational) at every sample of both phases, with the
-cumulative collisions per particle. The one observable that also measures the equilibration.)md";
+cumulative collisions per particle and whether the sample was measuring (1) or equilibrating (0):
+H5MD time series {step, time, value} `energy_per_particle`, `collisions_per_particle`, `measuring`. The one observable that also measures the equilibration.)md";
 
 const bool registered = register_plugin<Observable, KineticEnergy>(
     "kinetic_energy", "total kinetic energy per particle over time (equilibration and measurement)",

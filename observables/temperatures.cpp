@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "libgran/plugins/observable.hpp"
@@ -70,27 +72,35 @@ class Temperatures final : public Observable<D> {
         }
         mixture_.push(t_mix / double(n_mix));
         time_.push(ctx.time);
+        steps_.push_back(ctx.step);
     }
 
     void write(ResultGroup& g) const override {
-        g.array("time", time_.values(), "time");
         const std::string tunit = "energy";
         g.estimate("T_mixture", mixture_.estimate(), tunit);
-        g.array("series/T_mixture", mixture_.values());
+        // H5MD time series {step, time, value}; every series shares the mixture's step and time.
+        const auto steps = std::span<const std::int64_t>(steps_);
+        const auto times = time_.values();
+        g.time_series("series/T_mixture", steps, times, mixture_.values(), tunit);
+        const std::string clock = g.path() + "/series/T_mixture";
+        auto series = [&](ResultGroup& at, const std::string& name, std::span<const double> v,
+                          const std::string& unit) {
+            at.time_series("series/" + name, steps, times, v, unit, clock);
+        };
         for (std::size_t s = 0; s < table_.size(); ++s) {
             const auto& q = per_species_[s];
             const std::string name = table_.species[s].name;
             ResultGroup gs = g.group(name, {"species", name});
             gs.estimate("T", q.t.estimate(), tunit);
-            gs.array("series/T", q.t.values());
+            series(gs, "T", q.t.values(), tunit);
             for (int a = 0; a < D; ++a) {
                 const std::string c = std::string("T_") + component_name(a);
                 gs.estimate(c, q.t_comp[a].estimate(), tunit);
-                gs.array("series/" + c, q.t_comp[a].values());
+                series(gs, c, q.t_comp[a].values(), tunit);
             }
             if (rotating_) {
                 gs.estimate("T_rot", q.t_rot.estimate(), tunit);
-                gs.array("series/T_rot", q.t_rot.values());
+                series(gs, "T_rot", q.t_rot.values(), tunit);
             }
             if (q.v2.size() > 0) {
                 const double k_factor = double(D) / (D + 2.0);
@@ -106,7 +116,7 @@ class Temperatures final : public Observable<D> {
                     inst[k] =
                         k_factor * q.v4.values()[k] / (q.v2.values()[k] * q.v2.values()[k]) - 1.0;
                 }
-                gs.array("series/sonine_a2", inst);
+                series(gs, "sonine_a2", inst, "");
             }
             if (s == ref_) continue;
             const auto& r = per_species_[ref_];
@@ -129,6 +139,7 @@ class Temperatures final : public Observable<D> {
         ar.io(per_species_);
         ar.io(mixture_);
         ar.io(time_);
+        ar.io(steps_);
     }
 
   private:
@@ -152,11 +163,13 @@ class Temperatures final : public Observable<D> {
     std::vector<PerSpecies> per_species_;
     Series mixture_;
     Series time_;
+    std::vector<std::int64_t> steps_;  // the engine's events or steps at each sample
 };
 
 const char* const kDescription =
     R"md(
-Per species: T, T_x, T_y (T_z), T_rot (rough particles), Sonine a2, with errors and time series;
+Per species: T, T_x, T_y (T_z), T_rot (rough particles), Sonine a2, with errors and time series
+(`series/<quantity>` as H5MD {step, time, value}, sharing one step and time);
 ratios gamma = T_s / T_ref (total, per component, rotational); the mixture temperature.)md";
 
 const bool registered = register_plugin<Observable, Temperatures>(

@@ -121,7 +121,8 @@ def plain_log_labels(axis):
 
 def plot_temperatures(ax, run):
     obs = observable_path(run, "temperatures")
-    time = None if obs is None else optional(run.array, f"{obs}/time")
+    clock = None if obs is None else optional(run.series, f"{obs}/series/T_mixture")
+    time = None if clock is None else clock.x
     if time is None or time.size == 0:
         return False
 
@@ -193,16 +194,17 @@ def plot_kinetic_energy(ax, run):
     obs = observable_path(run, "kinetic_energy")
     if obs is None:
         return False
-    time = optional(run.array, f"{obs}/time")
-    energy = optional(run.array, f"{obs}/energy_per_particle")
-    if time is None or energy is None or time.size == 0:
+    curve = optional(run.series, f"{obs}/energy_per_particle")
+    if curve is None or curve.x.size == 0:
         return False
+    time, energy = curve.x, curve.value
     shown = (time > 0) & (energy > 0)
     t, e = time[shown], energy[shown]
     if t.size == 0:
         return False
     ax.loglog(t, e, lw=1.0, label="kinetic energy per particle")
-    measuring = optional(run.array, f"{obs}/measuring")
+    phase = optional(run.series, f"{obs}/measuring")
+    measuring = None if phase is None else phase.value
     if measuring is not None and measuring.size == time.size and measuring.any():
         start = time[np.argmax(measuring > 0)]
         if start > t[0]:

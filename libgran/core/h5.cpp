@@ -512,6 +512,16 @@ std::string Group::read_attr_string(const std::string& name) const {
     });
 }
 
+void Group::hard_link(const std::string& name, const std::string& target) {
+    const std::string w = where(name);
+    if (link_exists(id_.get(), name))
+        check(H5Ldelete(id_.get(), name.c_str(), H5P_DEFAULT), "replace", w);
+    const Handle lcpl = nested_link_props(w);
+    check(
+        H5Lcreate_hard(id_.get(), target.c_str(), id_.get(), name.c_str(), lcpl.get(), H5P_DEFAULT),
+        "create a link to", target + " as " + w);
+}
+
 void Group::external_link(const std::string& name, const std::string& file,
                           const std::string& object) {
     const std::string w = where(name);

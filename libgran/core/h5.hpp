@@ -115,6 +115,9 @@ class Group {
     // A link `name` to the object `object` (absolute) of the file `file`; a relative `file` is
     // looked for in this file's folder (where the trajectory sits beside its result).
     void external_link(const std::string& name, const std::string& file, const std::string& object);
+    // A second name `name` for the existing object `target` (absolute, or relative to this group):
+    // H5MD time series share one `step` and `time` this way.
+    void hard_link(const std::string& name, const std::string& target);
     void write_strings(const std::string& name, const std::vector<std::string>& values);
 
     // Attributes on this group; an existing attribute of the same name is replaced.

@@ -25,6 +25,7 @@ struct SampleContext {
     std::size_t expected_samples = 0;  // samples the measurement phase will take
     const EngineView<D>& engine;       // either engine (libgran/engine_view.hpp)
     const SpeciesTable& species;
+    std::int64_t step = 0;  // the engine's events or steps so far (H5MD `step` of time series)
 };
 
 template <int D>

@@ -219,6 +219,39 @@ void check_output_path(const std::string& output, const std::vector<std::string>
     probe_writable(folder, output);
 }
 
+namespace {
+// The step and time of an H5MD time series: written, or linked to those of `clock`.
+void series_clock(h5::Group& g, const std::string& name, std::span<const std::int64_t> step,
+                  std::span<const double> time, const std::string& clock) {
+    if (!clock.empty()) {
+        const std::string base =
+            clock.starts_with('/') ? "" : (g.path() == "/" ? "/" : g.path() + "/");
+        g.hard_link(name + "/step", base + clock + "/step");
+        g.hard_link(name + "/time", base + clock + "/time");
+        return;
+    }
+    g.write(name + "/step", step);
+    g.write(name + "/time", time);
+    g.attr_on(name + "/time", "unit", std::string("time"));
+}
+}  // namespace
+
+void ResultGroup::time_series(const std::string& name, std::span<const std::int64_t> step,
+                              std::span<const double> time, std::span<const double> value,
+                              const std::string& unit, const std::string& clock) {
+    series_clock(file_, name, step, time, clock);
+    file_.write(name + "/value", value);
+    if (!unit.empty()) file_.attr_on(name + "/value", "unit", unit);
+}
+
+void ResultGroup::time_series(const std::string& name, std::span<const std::int64_t> step,
+                              std::span<const double> time, std::span<const std::int64_t> value,
+                              const std::string& unit, const std::string& clock) {
+    series_clock(file_, name, step, time, clock);
+    file_.write(name + "/value", value);
+    if (!unit.empty()) file_.attr_on(name + "/value", "unit", unit);
+}
+
 void write_synced_text(const std::string& path, const std::string& text) {
     write_text(path, text);
 }

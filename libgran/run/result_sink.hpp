@@ -49,6 +49,8 @@ class ResultGroup {
     // Sub-group `name` in HDF5 whose summary node is at `summary_keys` below this one (e.g. the
     // temperatures' species groups, summarised under `species`).
     ResultGroup group(const std::string& name, const std::vector<std::string>& summary_keys);
+    // The group's absolute path in the file (for time-series clocks shared across groups).
+    const std::string& path() const { return file_.path(); }
     // This group, writing to the HDF5 file only.
     ResultGroup file_only() const { return ResultGroup(file_, summary_, false, unreliable_); }
 
@@ -77,6 +79,15 @@ class ResultGroup {
     void histogram(const std::string& prefix, std::span<const double> edges,
                    std::span<const double> density, std::span<const double> error,
                    const std::string& edges_unit = "");
+    // An H5MD time series `name` = {step, time, value} (HDF5 only), value in `unit`. With `clock`,
+    // the path (absolute, or relative to this group) of an earlier series of the same samples, its
+    // step and time are shared by hard links instead of written again.
+    void time_series(const std::string& name, std::span<const std::int64_t> step,
+                     std::span<const double> time, std::span<const double> value,
+                     const std::string& unit = "", const std::string& clock = "");
+    void time_series(const std::string& name, std::span<const std::int64_t> step,
+                     std::span<const double> time, std::span<const std::int64_t> value,
+                     const std::string& unit = "", const std::string& clock = "");
     // A dataset appended to row by row while the run goes on (h5::Group::appendable).
     template <class T>
     h5::Appendable series(const std::string& name, std::vector<std::size_t> row_shape = {},

@@ -254,7 +254,8 @@ class ScheduleLoop {
 
     void sample(bool measuring) {
         const EngineView<D>& view = runner_.view();
-        SampleContext<D> ctx{runner_.now(), measuring, expected_samples_, view, sc_.species};
+        SampleContext<D> ctx{runner_.now(), measuring,   expected_samples_,
+                             view,          sc_.species, std::int64_t(runner_.work())};
         for (auto& o : st_.observables) o->sample(ctx);
         if (!measuring) return;
         ++out_.samples;
@@ -282,7 +283,7 @@ class ScheduleLoop {
     double checkpoint_seconds_ = 0;  // wall-clock s spent writing them
     std::chrono::steady_clock::time_point last_checkpoint_;
     std::uint64_t chunk_ = 1024;  // engine work per advance call (advance_in_chunks)
-    Frame frame_;  // one frame, reused
+    Frame frame_;                 // one frame, reused
 };
 
 // /observables, /drivers and /performance (with the summary's observables, drivers, performance).
@@ -368,8 +369,8 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     totals.completed = !out.stopped();
     totals.interrupted = out.interrupted;
     totals.watchdog_stop = out.watchdog_stop;
-    write_trajectory(loop.frames(), sink, sink.destination(totals.completed), sc,
-                     opt.command_line, runner.work_unit());
+    write_trajectory(loop.frames(), sink, sink.destination(totals.completed), sc, opt.command_line,
+                     runner.work_unit());
     write_summary_header(sink.summary(), sc, opt.output, out.status(), out.watchdog_stop, n);
     write_results<D>(sink.root(), sc, runner, st.drivers, st.observables, out, totals);
     if (const YAML::Node h = headline(sink.summary()); h.size() > 0) sink.summary()["headline"] = h;

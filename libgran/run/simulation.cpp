@@ -161,7 +161,8 @@ void Simulation::sample(bool measuring, std::size_t expected_samples) {
     visit(*this, [&](auto& st) {
         const auto& view = st.runner->view();
         for (auto& o : st.observables) {
-            o->sample({view.now(), measuring, expected_samples, view, scene_->species});
+            o->sample({view.now(), measuring, expected_samples, view, scene_->species,
+                       std::int64_t(st.runner->work())});
         }
     });
 }

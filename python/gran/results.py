@@ -288,10 +288,19 @@ class Run:
                      array_at(self.root, path + "_error"))
 
     def series(self, path):
-        """A time series, e.g. 'observables/temperatures/grain/series/T': Curve(time, value, None),
-        time from the observable's `time` dataset."""
+        """A time series, e.g. 'observables/temperatures/grain/series/T': Curve(time, value,
+        None). Since issue 14 an H5MD element {step, time, value}; in older files a dataset
+        whose times are the observable's `time` dataset."""
+        node = self._node(path)
+        if isinstance(node, h5py.Group):
+            return Curve(np.asarray(node["time"][()], dtype=float), np.asarray(node["value"][()]),
+                         None)
         observable = "/".join(path.split("/")[:2])
         return Curve(self.array(f"{observable}/time"), self.array(path), None)
+
+    def series_steps(self, path):
+        """The engine's events or steps at each sample of an H5MD time series."""
+        return np.asarray(self._node(path)["step"][()])
 
     def histogram(self, path, kind=""):
         """The histogram in group `path` (datasets `<kind>edges`, `<kind>density`, `<kind>error`;

@@ -3,7 +3,7 @@
 
     result = gran.run(gran.Scene.load("studies/demo/vibrated-mixture-2d.yaml"))
     print(result.summary["gamma"])            # 0.8795 ± 0.0022 (the headline of `gran run`)
-    with result.open() as run: T = run.series("observables/temperatures/series/T_mixture")
+    with result.open() as run: t, T, _ = run.series("observables/temperatures/series/T_mixture")
 
     sim = gran.Simulation(scene)              # stepwise
     sim.advance(time=10)

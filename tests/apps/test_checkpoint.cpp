@@ -175,8 +175,8 @@ TEST_F(Checkpoint, KilledRunIsRecoveredUpToItsCheckpointAndStillResumesBitIdenti
         const std::int64_t samples = got.read_int64s("performance/samples").at(0);
         EXPECT_GT(samples, 0) << "killed before the first measurement sample: kill later";
         EXPECT_LT(samples, ref.read_int64s("performance/samples").at(0));
-        const auto e = got.read_doubles("observables/kinetic_energy/energy_per_particle");
-        const auto e_ref = ref.read_doubles("observables/kinetic_energy/energy_per_particle");
+        const auto e = got.read_doubles("observables/kinetic_energy/energy_per_particle/value");
+        const auto e_ref = ref.read_doubles("observables/kinetic_energy/energy_per_particle/value");
         ASSERT_EQ(e.size(), std::size_t(50 + samples));  // 100 / 2 equilibration samples
         EXPECT_TRUE(std::equal(e.begin(), e.end(), e_ref.begin()));
     }

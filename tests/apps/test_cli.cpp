@@ -229,7 +229,7 @@ TEST_F(Run, SameSceneAndSeedGiveIdenticalResults) {
         ASSERT_EQ(ra[k].first, rb[k].first);
         EXPECT_TRUE(bitwise_equal(ra[k].second, rb[k].second))
             << "/observables/" << ra[k].first << " differs between two runs with the same seed";
-        if (ra[k].first == "temperatures/series/T_mixture") {
+        if (ra[k].first == "temperatures/series/T_mixture/value") {
             saw_temperature_series = true;
             EXPECT_FALSE(ra[k].second.empty());
         }
@@ -302,8 +302,8 @@ void expect_sigterm_leaves_valid_result(const fs::path& dir, const std::vector<s
     const auto collisions = root.read_int64s("performance/collisions");
     ASSERT_EQ(collisions.size(), 1u);
     EXPECT_GT(collisions[0], 0);
-    const auto t = root.read_doubles("observables/temperatures/series/T_mixture");
-    const auto time = root.read_doubles("observables/temperatures/time");
+    const auto t = root.read_doubles("observables/temperatures/series/T_mixture/value");
+    const auto time = root.read_doubles("observables/temperatures/series/T_mixture/time");
     EXPECT_FALSE(t.empty());
     EXPECT_EQ(t.size(), time.size());
     for (double x : t) EXPECT_TRUE(x > 0 && std::isfinite(x)) << x;

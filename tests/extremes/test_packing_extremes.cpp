@@ -104,7 +104,7 @@ run: {{equilibration: 50, measurement: 500, sample_interval: 10}}
     o.z = o.p / value(pr["middle/eos/P_ideal"]);
     o.p_enskog = value(pr["middle/eos/P_enskog"]);
     auto f = h5::File::open_read((testing::temp_dir() / (tag + ".h5")).string());
-    const auto e = f.root().read_doubles("observables/kinetic_energy/energy_per_particle");
+    const auto e = f.root().read_doubles("observables/kinetic_energy/energy_per_particle/value");
     for (double x : e) o.energy_drift = std::max(o.energy_drift, std::abs(x / e.front() - 1));
     EXPECT_TRUE(std::isfinite(o.p) && o.p > 0) << "P = " << o.p;
     EXPECT_LT(o.energy_drift, 1e-10);

@@ -65,7 +65,7 @@ run: {measurement: 200, sample_interval: 5}
     // The TC guard did act (otherwise this would be the unguarded collapse).
     EXPECT_GT(s["performance"]["tc_guard_collisions"].as<double>(), 0);
     auto f = h5::File::open_read((testing::temp_dir() / (tag + ".h5")).string());
-    const auto e = f.root().read_doubles("observables/kinetic_energy/energy_per_particle");
+    const auto e = f.root().read_doubles("observables/kinetic_energy/energy_per_particle/value");
     ASSERT_EQ(e.size(), 40u);
     const double e_start = 0.5 * d * 1.0;  // T0 = 1: d/2 T per particle
     EXPECT_LT(e.front(), e_start);

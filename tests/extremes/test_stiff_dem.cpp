@@ -46,7 +46,7 @@ run: {{unit: time, measurement: 0.3, sample_interval: 0.01}}
     EXPECT_NEAR(iso["contact_time"].as<double>() / (M_PI * std::sqrt(0.5 / k)), 1.0, 1e-9);
     EXPECT_GT(s["performance"]["contacts"].as<double>(), 100) << "too few collisions to test";
     auto f = h5::File::open_read((testing::temp_dir() / (tag + ".h5")).string());
-    const auto e = f.root().read_doubles("observables/kinetic_energy/energy_per_particle");
+    const auto e = f.root().read_doubles("observables/kinetic_energy/energy_per_particle/value");
     std::size_t close = 0;
     for (double x : e) {
         EXPECT_LT(x / e.front(), 1 + 1e-3);

@@ -180,8 +180,11 @@ class SimulationTest(fixtures.TempDirTest):
             t = run.estimate("observables/temperatures/T_mixture")
             self.assertEqual(t.samples, 20)
             self.assertTrue(0 < t.value < 10)
-            series = run.array("observables/temperatures/series/T_mixture")
-            self.assertEqual(len(series), 20)
+            series = run.series("observables/temperatures/series/T_mixture")
+            self.assertEqual(len(series.value), 20)
+            np.testing.assert_array_equal(series.x, 0.5 * np.arange(1, 21))
+            steps = run.series_steps("observables/temperatures/series/T_mixture")
+            self.assertTrue(np.all(np.diff(steps) > 0))
 
     def test_a_scene_error_comes_before_any_simulation(self):
         with self.assertRaises(gran.SceneError):

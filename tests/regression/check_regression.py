@@ -33,21 +33,50 @@ def items(f):
     """Every dataset and attribute below the compared groups: path -> value."""
     out = {}
 
-    def visit(name, obj):
-        top = name.split("/")[0]
-        if isinstance(obj, h5py.Dataset):
-            out[name] = obj[()]
-        if top == "drivers":
-            return  # driver attributes are descriptions, not results
-        for key, value in obj.attrs.items():
-            out[f"{name}@{key}"] = value
+    # Every link, walked by name: visititems would skip a second name of an object (the hard
+    # links of H5MD time series sharing step and time) and external links (/particles links to
+    # the trajectory file since issue 14).
+    def walk(group, prefix, top):
+        for name in group:
+            obj = group[name]
+            path = f"{prefix}/{name}"
+            if isinstance(obj, h5py.Dataset):
+                out[path] = obj[()]
+            if top != "drivers":  # driver attributes are descriptions, not results
+                for key, value in obj.attrs.items():
+                    out[f"{path}@{key}"] = value
+            if isinstance(obj, h5py.Group):
+                walk(obj, path, top)
 
-    # Group by group: /particles is an external link to the trajectory file since issue 14,
-    # which visititems on the file would not follow.
     for top in COMPARED:
         if top in f:
-            f[top].visititems(lambda name, obj, top=top: visit(f"{top}/{name}", obj))
+            if top != "drivers":
+                for key, value in f[top].attrs.items():
+                    out[f"{top}@{key}"] = value
+            walk(f[top], top, top)
     return out
+
+
+def series_in_reference_layout(got, problems):
+    """Time series of observables in the reference files' layout: since issue 14 each is an H5MD
+    element X/{step, time, value} (time and step shared by hard links); before, X was the values
+    and the observable's `time` dataset the times. X/value becomes X (its unit X@unit), the
+    observable's times its `time`; the steps must increase strictly."""
+    for key in sorted(k for k in got if k.startswith("observables/") and k.endswith("/value")):
+        x = key[: -len("/value")]
+        if f"{x}/step" not in got or f"{x}/time" not in got:
+            continue
+        observable = "/".join(x.split("/")[:2])
+        time = got.pop(f"{x}/time")
+        steps = np.asarray(got.pop(f"{x}/step"))
+        if np.any(np.diff(steps) <= 0):
+            problems.append(f"differs {x}/step: not strictly increasing")
+        got.setdefault(f"{observable}/time", time)
+        got.setdefault(f"{observable}/time@unit", got.pop(f"{x}/time@unit", "time"))
+        got.pop(f"{x}/time@unit", None)
+        got[x] = got.pop(key)
+        if f"{key}@unit" in got:
+            got[f"{x}@unit"] = got.pop(f"{key}@unit")
 
 
 def in_reference_layout(got, problems):
@@ -55,6 +84,7 @@ def in_reference_layout(got, problems):
     purpose): box edges were a vector, now one D x D matrix of edge vectors per frame (its
     diagonal must be the old vector); `step` was the frame index, now the engine's events or
     steps at the frame (must increase strictly; compared as the frame index)."""
+    series_in_reference_layout(got, problems)
     edges = got.pop("particles/all/box/edges/value", None)
     if edges is not None:
         diagonals = {tuple(np.diag(frame)) for frame in edges}
@@ -94,7 +124,8 @@ def compare(result, reference, scene="", allowed=()):
     problems = []
     with h5py.File(result, "r") as fr, h5py.File(reference, "r") as fref:
         got, want = items(fr), items(fref)
-    if "particles/all/box/edges" in want:  # a reference made before issue 14
+    if "particles/all/box/edges" in want or any(re.fullmatch(r"observables/[^/]+/time", k)
+                                                for k in want):  # made before issue 14
         got = in_reference_layout(got, problems)
     for key in sorted(set(want) - set(got)):
         problems.append(f"missing {key}")

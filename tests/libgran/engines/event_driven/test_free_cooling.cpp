@@ -32,8 +32,8 @@ run: {{measurement: 25, sample_interval: 0.25}}
     const std::string path = (testing::temp_dir() / fmt::format("haff_{}d.h5", d)).string();
     auto file = h5::File::open_read(path);
     auto g = file.root().group("observables/kinetic_energy");
-    const auto t = g.read_doubles("time");
-    const auto e = g.read_doubles("energy_per_particle");
+    const auto t = g.read_doubles("energy_per_particle/time");
+    const auto e = g.read_doubles("energy_per_particle/value");
     // Least-squares line of 1/sqrt(T) against t, T = 2E/d (smooth particles).
     double st = 0, sy = 0, stt = 0, sty = 0;
     const double T0 = 2.0 * e.front() / d;
