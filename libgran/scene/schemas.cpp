@@ -132,7 +132,9 @@ Schema watchdog_schema() {
 Schema output_schema() {
     return {integer(
         "frames", "0",
-        "trajectory frames written under /particles (equally spaced in the measurement)", 0, 1e6)};
+        "trajectory frames (equally spaced in the measurement) written to OUT.trajectory.h5 (H5MD) "
+        "and OUT.trajectory.xdmf (ParaView); /particles of OUT.h5 links to them",
+        0, 1e6)};
 }
 
 namespace {
