@@ -141,6 +141,7 @@ class Scene:
 
     @property
     def path(self) -> str:
+        """The file the scene came from ("<dict>", "<string>" otherwise); errors name it."""
         return self._path
 
     @property

@@ -118,10 +118,12 @@ class Result:
 
     @property
     def status(self) -> str:
+        """completed, interrupted, stopped by the watchdog, or unreliable (a non-finite error)."""
         return str(self.summary._data.get("status", ""))
 
     @property
     def completed(self) -> bool:
+        """True when the status is `completed`."""
         return self.status == "completed"
 
     def open(self) -> Run:
@@ -217,6 +219,7 @@ class Simulation:
 
     @property
     def collisions(self) -> int:
+        """Collisions so far (pair collisions; wall hits are not counted)."""
         return self._sim.collisions
 
     @property
@@ -226,10 +229,12 @@ class Simulation:
 
     @property
     def work_unit(self) -> str:
+        """"events" (event_driven engine) or "steps" (dem)."""
         return self._sim.work_unit
 
     @property
     def dimension(self) -> int:
+        """2 or 3."""
         return self._sim.dimension
 
     @property

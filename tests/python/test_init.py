@@ -36,5 +36,25 @@ class OpenTest(fixtures.TempDirTest):
             gran.open(notes)
 
 
+class DocumentationTest(unittest.TestCase):
+    def test_every_public_name_and_method_has_a_docstring(self):
+        import inspect
+        missing = []
+        for name in gran.__all__ + ["open", "native"]:
+            obj = getattr(gran, name)
+            if not obj.__doc__:
+                missing.append(name)
+            if inspect.isclass(obj):
+                for member, value in vars(obj).items():
+                    if member.startswith("_"):
+                        continue
+                    doc = value.fget.__doc__ if isinstance(value, property) else \
+                        getattr(value, "__doc__", None)
+                    if callable(value) or isinstance(value, property):
+                        if not doc:
+                            missing.append(f"{name}.{member}")
+        self.assertEqual(missing, [])
+
+
 if __name__ == "__main__":
     unittest.main()
