@@ -144,6 +144,11 @@ def _default_output(scene: Scene) -> str:
     return str(Path("results") / f"{stem}.h5")
 
 
+def _result(report: dict) -> Result:
+    summary = yaml.safe_load(report["summary"]) or {}
+    return Result(report["output"], report["summary_file"], summary, report["error"])
+
+
 def run(scene: Union[Scene, str, os.PathLike], output: Optional[Union[str, os.PathLike]] = None,
         progress: bool = False, callback: Optional[Callable[[int, float], Any]] = None,
         every: int = 1) -> Result:
@@ -155,17 +160,27 @@ def run(scene: Union[Scene, str, os.PathLike], output: Optional[Union[str, os.Pa
     progress: the progress line on stderr, as `gran run` prints it.
     callback: called as callback(samples, time) after every `every` measurement samples, with
               the simulation paused; an exception it raises stops the run (the data measured so
-              far is written) and propagates.
+              far is written) and propagates with the Result as its `result` attribute (a
+              KeyboardInterrupt becomes Interrupted).
     Raises SceneError (invalid scene), OSError (an output that cannot be written), Interrupted
     (Ctrl-C; the result holds the data measured so far) and WatchdogStop (the watchdog stopped
     the run; its data is written, at `e.result`)."""
     if not isinstance(scene, Scene):
         scene = Scene.load(scene)
     output = str(output) if output is not None else _default_output(scene)
-    with _scene_errors():
-        report = _native().run(scene.native(), output, bool(progress), callback, int(every))
-    summary = yaml.safe_load(report["summary"]) or {}
-    result = Result(report["output"], report["summary_file"], summary, report["error"])
+    try:
+        with _scene_errors():
+            report = _native().run(scene.native(), output, bool(progress), callback, int(every))
+    except BaseException as error:  # the callback's exception, with the data written
+        report = getattr(error, "gran_report", None)
+        if report is None:
+            raise
+        result = _result(report)
+        if isinstance(error, KeyboardInterrupt):
+            raise Interrupted(result) from error
+        error.result = result
+        raise
+    result = _result(report)
     if report["interrupted"]:
         raise Interrupted(result)
     if report["error"]:

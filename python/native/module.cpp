@@ -11,6 +11,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <signal.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
 
 #include <atomic>
@@ -129,12 +131,20 @@ py::dict run(const PyScene& s, const std::string& output, bool progress, py::obj
     gran::RunReport rep;
     bool sigint = false;
     {
+        // Without progress, only warnings (as `gran run -q`).
+        const spdlog::level::level_enum level = spdlog::get_level();
+        if (!progress) spdlog::set_level(spdlog::level::warn);
         SigintToFlag guard;
         py::gil_scoped_release release;
-        rep = gran::run_scene(*s.scene, opt);
+        try {
+            rep = gran::run_scene(*s.scene, opt);
+        } catch (...) {
+            spdlog::set_level(level);
+            throw;
+        }
+        spdlog::set_level(level);
         sigint = guard.interrupted() && !callback_error;
     }
-    if (callback_error) throw std::move(*callback_error);
     py::dict d;
     d["completed"] = rep.completed;
     d["error"] = rep.error;
@@ -142,6 +152,12 @@ py::dict run(const PyScene& s, const std::string& output, bool progress, py::obj
     d["summary_file"] = rep.summary_file;
     d["summary"] = emit(rep.summary);
     d["interrupted"] = sigint;
+    if (callback_error) {
+        // The run stopped on the callback's exception with its data written: the exception
+        // carries the report, so gran.run can attach the Result to it.
+        callback_error->value().attr("gran_report") = d;
+        throw std::move(*callback_error);
+    }
     return d;
 }
 
@@ -257,6 +273,9 @@ py::dict version() {
 
 PYBIND11_MODULE(_native, m) {
     m.doc() = "gran's compiled core (use the package gran, which wraps it)";
+    // Log lines on stderr, never mixed into what a script prints on stdout.
+    spdlog::set_default_logger(spdlog::stderr_color_mt("gran"));
+    spdlog::set_pattern("[%H:%M:%S] [%^%l%$] %v");
     py::register_exception<gran::SceneError>(m, "SceneError", PyExc_ValueError);
     py::register_exception<gran::OutputError>(m, "OutputError", PyExc_OSError);
     py::register_exception<gran::CheckpointError>(m, "CheckpointError", PyExc_RuntimeError);

@@ -99,11 +99,35 @@ class RunTest(fixtures.TempDirTest):
 
         def stop(n, t):
             raise ValueError(f"enough at {n}")
-        with self.assertRaisesRegex(ValueError, "enough at 10"):
+        with self.assertRaisesRegex(ValueError, "enough at 10") as caught:
             gran.run(gran.Scene.load(DEMO, DEMO_SHORT), output=self.dir / "b.h5", callback=stop,
                      every=10)
+        self.assertEqual(caught.exception.result.status, "interrupted")
+        self.assertEqual(caught.exception.result.path, str(self.dir / "b.h5"))
         summary = (self.dir / "b.summary.yaml").read_text()
         self.assertIn("status: interrupted", summary)
+
+        def ctrl_c(n, t):
+            raise KeyboardInterrupt
+        with self.assertRaises(gran.Interrupted) as caught:
+            gran.run(gran.Scene.load(DEMO, DEMO_SHORT), output=self.dir / "c.h5", callback=ctrl_c)
+        self.assertEqual(caught.exception.result.status, "interrupted")
+
+    def test_log_lines_go_to_stderr_never_to_stdout(self):
+        # A run stopped by its callback logs a warning (and where its data went).
+        script = ("import gran\n"
+                  "def stop(n, t):\n"
+                  "    raise ValueError('stop')\n"
+                  "try:\n"
+                  f"    gran.run(gran.Scene.load({str(DEMO)!r}, {DEMO_SHORT!r}), "
+                  f"output={str(self.dir / 'log.h5')!r}, callback=stop)\n"
+                  "except ValueError:\n"
+                  "    pass\n")
+        env = dict(os.environ, PYTHONPATH=str(ROOT / "python"))
+        done = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True,
+                              text=True, check=True)
+        self.assertEqual(done.stdout, "")
+        self.assertIn("[warning] interrupted", done.stderr)
 
     def test_an_output_that_cannot_be_written_is_refused_before_running(self):
         with self.assertRaisesRegex(OSError, "ending in .h5"):
