@@ -444,7 +444,6 @@ int cmd_resume(const CommandLine& cl, int argc, char** argv) {
     if (!cl.scene_file.empty()) given = gran::load_scene(cl.scene_file, cl.sets);
     if (!cl.sets.empty() && !given)
         throw gran::SceneError("gran run --resume: --set needs the scene file it changes");
-    stop_on_signals();
     const gran::RunOptions opt = run_options(cl, argc, argv);
     spdlog::info("{} {} from {}", opt.recover_only ? "recovering" : "resuming", opt.output,
                  gran::checkpoint_path_for(opt.output));
@@ -477,6 +476,10 @@ int out_of_memory(const char* stage, const gran::Scene* scene) {
 int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
     const char* stage = "reading the scene (species, contacts, plugins)";
     std::optional<gran::Scene> loaded;
+    // From the start, not once the scene is loaded: a signal while a large scene loads (or a
+    // slow, sanitized build starts) stops the run at its first check, writing its (empty) result
+    // with exit 3, instead of killing it.
+    if (!check_only) stop_on_signals();
     try {
         if (!check_only && (!cl.resume.empty() || !cl.recover.empty())) {
             stage = "resuming the run from its checkpoint";
@@ -495,7 +498,6 @@ int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
             print_cost(scene);
             return 0;
         }
-        stop_on_signals();
         const gran::RunOptions opt = run_options(cl, argc, argv);
         spdlog::info("running {} ({}D, {} particles, packing fraction {:.4g})", cl.scene_file,
                      scene.dimension, scene.species.total_count(), scene.packing_fraction);
