@@ -14,16 +14,6 @@
 // The mass-weighted mean kick is removed (key `remove_drift`) so that total momentum stays
 // zero: otherwise the centre of mass performs an undamped random walk whose kinetic energy grows
 // linearly in time. The correction changes each kick by O(1/N).
-//
-// When the kicks come (key `kicks`):
-//  - every_interval: every particle at once, every `interval`. Each kick changes every velocity,
-//    so the engine re-predicts every event: 8 passes over all particles per mean free time at the
-//    default interval, 2-6x the cost of the unheated gas.
-//  - at_collisions: each particle is kicked right after each of its collisions with the noise
-//    accumulated since its previous kick, variance rate * (t - t_last) per component
-//    (libgran/plugins/collision_noise.hpp): the same injected variance per unit time, applied
-//    where the particle's next event is predicted anyway. The mean kick of the particles is
-//    removed every `kDriftIntervalsInMeanFreeTimes` mean free times by one pass over all.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -40,17 +30,12 @@ template <int D>
 class StochasticThermostat final : public Driver<D> {
   public:
     StochasticThermostat(const Params& p, const SceneInfo& info)
-        : at_collisions_(p.str("kicks") == "at_collisions"),
-          interval_(p.has("interval") ? p.real("interval") : default_interval(info)),
+        : interval_(p.has("interval") ? p.real("interval") : default_interval(info)),
           strength_(p.real("strength")),
           equal_force_(p.str("noise") == "equal_force_variance"),
           remove_drift_(p.boolean("remove_drift")),
           next_(interval_),
           rng_(make_rng(info.seed + 1000003ull * info.index, Stream::Driver)) {
-        if (at_collisions_) {
-            set_up_collision_noise(p, info);
-            return;
-        }
         // Kicks touch every particle and reschedule every event: an interval many orders below
         // the mean free time makes a run that cannot finish (1e-300 does not even advance the
         // time), refused here rather than left to run.
@@ -68,13 +53,8 @@ class StochasticThermostat final : public Driver<D> {
     static constexpr double kMinIntervalOverMeanFreeTime = 1e-6;
 
     double next_kick() const override { return next_; }
-    CollisionNoise* collision_noise() override { return at_collisions_ ? &noise_ : nullptr; }
 
     void kick(Particles<D>& p, const SpeciesTable& species) override {
-        if (at_collisions_) {
-            remove_noise_drift(p, species);
-            return;
-        }
         const std::size_t n = p.size();
         kicks_.resize(n);
         Vec<D> dp = Vec<D>::Zero();
@@ -106,17 +86,9 @@ class StochasticThermostat final : public Driver<D> {
         ar.io(rng_);
         ar.io(injected_);
         ar.io(count_);
-        if (at_collisions_) ar.io(noise_);
     }
 
     void write(ResultGroup& g) const override {
-        g.text("kicks_at", at_collisions_ ? "at_collisions" : "every_interval");
-        if (at_collisions_) {
-            g.value("kicks", noise_.kicks);  // particle kicks
-            g.value("drift_removals", count_);
-            g.value("injected_energy", injected_ + noise_.injected_energy, "energy");
-            return;
-        }
         g.value("kicks", count_);
         g.value("interval", interval_, "time");
         g.value("injected_energy", injected_, "energy");
@@ -153,53 +125,6 @@ class StochasticThermostat final : public Driver<D> {
     }
 
   private:
-    // Mean free times between two removals of the kicks' mean momentum (kicks: at_collisions):
-    // each removal is one pass over all particles (~1% of the cost of the collisions in between),
-    // and the centre of mass drifts meanwhile by a velocity of variance ~ 10 xi^2 t_mf / N.
-    static constexpr double kDriftIntervalsInMeanFreeTimes = 10;
-
-    void set_up_collision_noise(const Params& p, const SceneInfo& info) {
-        if (p.has("interval")) {
-            p.fail("interval",
-                   "with kicks: at_collisions each particle is kicked at its own collisions; "
-                   "`interval` sets the common clock of kicks: every_interval");
-        }
-        if (info.species->total_count() < 2) {
-            p.fail("kicks",
-                   "at_collisions needs collisions, and one particle has none: use kicks: "
-                   "every_interval");
-        }
-        for (const auto& s : info.species->species) {
-            noise_.variance_rate.push_back(equal_force_ ? strength_ / (s.mass * s.mass)
-                                                        : strength_);
-            noise_.mass.push_back(s.mass);
-        }
-        noise_.rng = rng_;
-        interval_ = kDriftIntervalsInMeanFreeTimes * 8.0 * default_interval(info);
-        next_ = remove_drift_ ? interval_ : kInf;
-    }
-
-    // Subtracts the kicks' mean momentum since the last removal from every particle (total
-    // momentum of the kicks back to zero, as every_interval does at each kick).
-    void remove_noise_drift(Particles<D>& p, const SpeciesTable& species) {
-        double mass = 0;
-        for (std::size_t i = 0; i < p.size(); ++i) mass += species.species[p.species[i]].mass;
-        Vec<D> drift;
-        for (int a = 0; a < D; ++a) drift[a] = noise_.momentum[std::size_t(a)] / mass;
-        double de = 0;
-        for (std::size_t i = 0; i < p.size(); ++i) {
-            const double m = species.species[p.species[i]].mass;
-            de += m * (0.5 * drift.squaredNorm() - p.v[i].dot(drift));
-            p.v[i] -= drift;
-        }
-        injected_ += de;
-        noise_.momentum = {};
-        ++count_;
-        next_ += interval_;
-    }
-
-    bool at_collisions_;
-    CollisionNoise noise_;
     double interval_;
     double strength_;
     bool equal_force_;
@@ -223,14 +148,7 @@ with `equal_force_variance` every particle feels random forces of the same varia
 variance strength * interval / m^2 (`strength` in force^2 * time; lighter particles are shaken
 harder). `remove_drift` subtracts the mass-weighted mean kick (a change of O(1/N) per kick): without
 it the centre of mass performs an undamped random walk whose kinetic energy grows linearly in
-time.
-
-`kicks: at_collisions` kicks each particle right after each of its collisions instead, with the
-noise accumulated since its previous kick (variance strength * elapsed time per component): the
-same energy injection per unit time without re-predicting every event at every kick, so a heated
-gas costs about what the unheated one does. `interval` does not apply; with `remove_drift` the mean
-momentum of the kicks is removed every 10 mean free times. Its accuracy against every_interval
-is measured in docs/physics.md.)md";
+time.)md";
 
 const bool registered = register_plugin<Driver, StochasticThermostat>(
     "stochastic_thermostat",
@@ -248,11 +166,7 @@ const bool registered = register_plugin<Driver, StochasticThermostat>(
      choice("noise", "equal_velocity_variance", {"equal_velocity_variance", "equal_force_variance"},
             "noise amplitude convention (see docs/scene-reference.md)"),
      boolean("remove_drift", "true",
-             "subtract the mass-weighted mean kick so total momentum stays zero"),
-     choice("kicks", "every_interval", {"every_interval", "at_collisions"},
-            "when the kicks come: every particle every `interval`, or each particle right after "
-            "each of its collisions with the noise accumulated since its previous kick (no "
-            "re-prediction of every event; see docs/physics.md)")},
+             "subtract the mass-weighted mean kick so total momentum stays zero")},
     kDescription);
 
 // `gran tradeoff`'s knob of the thermostat (libgran/study/knob.hpp): the time between kicks, the

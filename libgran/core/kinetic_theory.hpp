@@ -100,6 +100,14 @@ double enskog_pair_collision_frequency(int d, double n_j, double sigma_ij, doubl
 double haff_time_scale(int d, double alpha, double omega0);
 double haff_temperature(double T0, double t0, double t);
 
+// Sonine coefficient a2 = <c^4> / <c^4>_Maxwell - 1 of the steady state of a monodisperse gas
+// heated by white noise, in the first Sonine approximation (T. P. C. van Noije & M. H. Ernst,
+// Granular Matter 1, 57 (1998)):
+//   a2 = 16 (1 - alpha)(1 - 2 alpha^2) / (73 + 56 d - 24 d alpha - 105 alpha + 30 (1 - alpha)
+//   alpha^2).
+// Zero for alpha = 1 and alpha = 1/sqrt(2); 0.0256 for spheres and 0.0356 for disks at alpha = 0.5.
+double white_noise_sonine_a2(int d, double alpha);
+
 // Mean rate of change of the kinetic energy of ONE particle of species i due to collisions with
 // species j (Enskog, both species Maxwellian at T_i, T_j). Derivation: per collision
 // Delta E_i = (m_i/2) [a^2 - 2 a v_i.n], a = mu_ji (1+alpha_ij) g.n; given g,

@@ -5,8 +5,7 @@
 //    a partner name in `interactions` (or a rule replacing the contact, a thermal wall);
 //  - next_kick() and kick(): global kick events (a thermostat): the run stops the engine at
 //    next_kick(), brings every particle to that time, calls kick() on the velocities and tells the
-//    engine they changed;
-//  - collision_noise(): white noise the event-driven engine applies at each collision.
+//    engine they changed.
 // Gravity is a scene key, not a driver.
 #include <yaml-cpp/yaml.h>
 
@@ -15,7 +14,6 @@
 
 #include "libgran/core/registry.hpp"
 #include "libgran/core/state_archive.hpp"
-#include "libgran/plugins/collision_noise.hpp"
 #include "libgran/plugins/engine_view.hpp"
 #include "libgran/plugins/scene_info.hpp"
 #include "libgran/plugins/wall.hpp"
@@ -33,9 +31,6 @@ class Driver {
     // time, in the engine's storage order (species from `species`).
     virtual double next_kick() const { return kInf; }
     virtual void kick(Particles<D>& /*particles*/, const SpeciesTable& /*species*/) {}
-    // Noise the event-driven engine adds to both partners of every collision (a thermostat's
-    // `kicks: at_collisions`), or null; the driver owns it and archives it in checkpoint().
-    virtual CollisionNoise* collision_noise() { return nullptr; }
     // Once the engine runs: what the driver may read of it (e.g. the hits on its walls).
     virtual void observe(const EngineView<D>& /*view*/) {}
     // Largest speed of a moving boundary (V_p = A omega of a vibrating wall), 0 if none: the

@@ -84,9 +84,6 @@ class EventDrivenRunner final : public EngineRunner<D> {
             }
         }
         for (auto& d : drivers) d->observe(view_);
-        for (auto& d : drivers) {  // at most one (refused at load)
-            if (CollisionNoise* noise = d->collision_noise()) engine_.set_collision_noise(noise);
-        }
         for (auto& o : observables) {
             if (auto* s = o->collision_sink()) fanout_.sinks.push_back(s);
         }

@@ -31,7 +31,6 @@ SceneInfo base_info(const Scene& sc) {
 template <int D>
 void check_drivers(Scene& sc, EngineDemands& demands, std::vector<std::string>& partners) {
     std::array<const PluginEntry*, 2 * D> owner{};
-    const PluginEntry* noise_owner = nullptr;
     for (std::size_t k = 0; k < sc.drivers.size(); ++k) {
         const PluginEntry& e = sc.drivers[k];
         auto driver =
@@ -56,15 +55,6 @@ void check_drivers(Scene& sc, EngineDemands& demands, std::vector<std::string>& 
                 }
                 partners.push_back(w.partner);
             }
-        }
-        if (driver->collision_noise()) {
-            if (noise_owner) {
-                e.params.fail("kicks", fmt::format("driver '{}' already adds noise at collisions; "
-                                                   "one driver with kicks: at_collisions per "
-                                                   "scene (give one the summed strength)",
-                                                   noise_owner->name));
-            }
-            noise_owner = &e;
         }
         if (driver->next_kick() < kInf) {
             demands.kick_drivers.push_back(k);

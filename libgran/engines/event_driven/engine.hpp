@@ -33,7 +33,6 @@
 #include "libgran/engines/event_driven/event_times.hpp"
 #include "libgran/engines/event_driven/pair_counts.hpp"
 #include "libgran/engines/event_driven/scheduler.hpp"
-#include "libgran/plugins/collision_noise.hpp"
 #include "libgran/plugins/law.hpp"
 #include "libgran/plugins/wall.hpp"
 
@@ -125,13 +124,6 @@ class EventDrivenEngine {
     const std::vector<std::uint32_t>& ids() const { return id_; }
 
     void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
-    // White noise applied to both partners of every collision
-    // (libgran/plugins/collision_noise.hpp), owned by a driver that outlives the engine; every
-    // particle's noise clock starts now.
-    void set_collision_noise(CollisionNoise* noise) {
-        noise_ = noise;
-        last_kick_.assign(noise ? p_.size() : 0, now_);
-    }
 
     // The dynamic state, saved or loaded between events (libgran/core/state_archive.hpp); the
     // walls' settings, the species and the contacts come from the scene.
@@ -200,11 +192,6 @@ class EventDrivenEngine {
             wj = p_.w[j];
         }
     }
-    // The noise accumulated since i's previous kick, added to its velocity (collide()).
-    void kick_with_noise(std::uint32_t i) {
-        apply_collision_noise<D>(*noise_, p_.species[i], now_ - last_kick_[i], p_.v[i]);
-        last_kick_[i] = now_;
-    }
     void cross_cell(std::uint32_t i, int code);
     template <class L>
     void hit_wall(std::uint32_t i, int code);
@@ -244,8 +231,6 @@ class EventDrivenEngine {
 
     PairCounts pair_collisions_;
     CollisionSink<D>* sink_ = nullptr;
-    CollisionNoise* noise_ = nullptr;
-    std::vector<double> last_kick_;  // per particle, with noise_: time of its last kick
 
     struct WallSlot {
         WallReflection<D>* reflection = nullptr;  // null: a contact with the law

@@ -16,7 +16,6 @@ void EventDrivenEngine<D>::rebase_time() {
         p_.t[i] = 0.0;
         last_collision_[i] -= shift;
     }
-    for (double& t : last_kick_) t -= shift;
     events_.shift(shift);
     t_origin_ += shift;
     now_ = 0.0;
@@ -51,7 +50,6 @@ void EventDrivenEngine<D>::sort_by_cell() {
     apply_order(id_, order);
     apply_order(count_, order);
     apply_order(last_collision_, order);
-    if (!last_kick_.empty()) apply_order(last_kick_, order);
     events_.reorder(order, inv);
     cells_.reorder(order);
     ++counters_.sorts;
@@ -67,7 +65,6 @@ void EventDrivenEngine<D>::checkpoint(StateArchive& ar) {
     ar.io(limit_now_);
     ar.io(count_);
     ar.io(last_collision_);
-    ar.io(last_kick_);
     ar.io(events_);
     ar.io(cells_);
     ar.io(pair_collisions_);

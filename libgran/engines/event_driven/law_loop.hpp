@@ -125,13 +125,6 @@ void EventDrivenEngine<D>::collide(std::uint32_t i, std::uint32_t j) {
     ++counters_.collisions;
     pair_collisions_.add(std::min(si, sj), std::max(si, sj));
     if (sink_) notify(rec, i, j, impulse);
-    // A thermostat's noise at collisions comes after the collision rule: the collision record
-    // holds the collision itself, and a kick that turns the pair towards each other again is
-    // met by the prediction as an overlap-free contact collision at once.
-    if (noise_) {
-        kick_with_noise(i);
-        kick_with_noise(j);
-    }
     repredict(i);
     repredict(j);
 }

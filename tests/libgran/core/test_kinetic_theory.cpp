@@ -241,6 +241,16 @@ TEST(KineticTheory, HaffLawTimeScaleAndDecay) {
 // ---------------------------------------------------------------------------------------------
 // Energy exchange rate.
 
+// Hand values of van Noije & Ernst's formula: at alpha = 0.5 the numerator is 4 and the
+// denominator 73 + 56 d - 12 d - 52.5 + 3.75; a2 vanishes at alpha = 1 and 1/sqrt(2).
+TEST(KineticTheory, WhiteNoiseSonineA2AtHandComputedPoints) {
+    EXPECT_NEAR(theory::white_noise_sonine_a2(3, 0.5), 4.0 / 156.25, 1e-15);
+    EXPECT_NEAR(theory::white_noise_sonine_a2(2, 0.5), 4.0 / 112.25, 1e-15);
+    EXPECT_EQ(theory::white_noise_sonine_a2(3, 1.0), 0.0);
+    EXPECT_NEAR(theory::white_noise_sonine_a2(2, 1 / std::sqrt(2.0)), 0.0, 1e-15);
+    EXPECT_LT(theory::white_noise_sonine_a2(3, 0.9), 0.0);
+}
+
 TEST(KineticTheory, EnergyRateLimits) {
     for (int d : {2, 3}) {
         // Elastic, equal temperatures: no net exchange even for unequal masses and sizes.
