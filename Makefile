@@ -96,8 +96,11 @@ reproduce-bhateja-2016: build
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
+# UBSan recovers by default: a report in a passing test (or in a gran run a test starts and whose
+# output it keeps) would go unseen. halt_on_error makes every report fail its test.
 sanitize:
-	$(MAKE) test BUILD_DIR=build-asan CMAKE_FLAGS="-DGRAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
+	UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	  $(MAKE) test BUILD_DIR=build-asan CMAKE_FLAGS="-DGRAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
 
 # Fuzzing campaign of the scene loader under ASan and UBSan (tests/fuzz/fuzz_scenes.cpp): mutants of
 # every scene of the project for FUZZ_SECONDS; failing inputs go to results/fuzz/. The in-suite
@@ -107,7 +110,7 @@ FUZZ_SEED ?= 1
 fuzz:
 	$(MAKE) configure BUILD_DIR=build-asan CMAKE_FLAGS="-DGRAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo"
 	cmake --build build-asan -j $(JOBS) --target gran_fuzz_scenes
-	build-asan/tests/gran_fuzz_scenes --seconds $(FUZZ_SECONDS) --seed $(FUZZ_SEED) \
+	UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 build-asan/tests/gran_fuzz_scenes --seconds $(FUZZ_SECONDS) --seed $(FUZZ_SEED) \
 	  --findings results/fuzz .
 
 clean:
