@@ -69,7 +69,7 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     sort_every_ = 16 * std::uint64_t(std::max<std::size_t>(n, 64));
     sort_by_cell();
     synchronize();
-    for (std::uint32_t i = 0; i < n; ++i) predict(i);
+    predict_all();
     events_.rebuild();
 }
 
@@ -185,6 +185,55 @@ void EventDrivenEngine<D>::predict(std::uint32_t i) {
     std::int32_t partner = -1;
     scan_cells(i, cells, n, best, partner);
     schedule(i, best, partner);
+}
+
+template <int D>
+void EventDrivenEngine<D>::predict_all() {
+    // Every pair of neighbours is met twice in a per-particle pass (from i and from j), and after a
+    // thermostat kick such passes are most of a heated run's work. Here each pair is met once: i
+    // meets the particles stored after it in its own cell and every particle of the forward half
+    // of its neighbour cells (CellList::forward_neighbours), and each collision time updates both
+    // partners. The times are bit for bit those of the per-particle scan: separation(rj, ri) is
+    // exactly -separation(ri, rj), so b, c and the root are the same numbers. One-cell periodic
+    // axes (the image scan) keep the per-particle pass.
+    const auto n = std::uint32_t(p_.size());
+    if (!cells_.image_offsets().empty()) {
+        for (std::uint32_t i = 0; i < n; ++i) predict(i);
+        return;
+    }
+    all_best_.assign(n, kInf);
+    all_partner_.assign(n, -1);
+    double* best = all_best_.data();
+    std::int32_t* partner = all_partner_.data();
+    const Vec<D>* r = p_.r.data();
+    const Vec<D>* v = p_.v.data();
+    const std::uint32_t* species = p_.species.data();
+    const double* radius = radius_.data();
+    auto meet = [&](std::uint32_t i, std::uint32_t j) {
+        const Vec<D> dr = box_.separation(r[i], r[j]);
+        const double t = pair_collision_time<D>(
+            dr, v[i] - v[j], radius[species[i]] + radius[species[j]], std::max(best[i], best[j]));
+        if (t < best[i]) {
+            best[i] = t;
+            partner[i] = std::int32_t(j);
+        }
+        if (t < best[j]) {
+            best[j] = t;
+            partner[j] = std::int32_t(i);
+        }
+    };
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const std::int32_t own = cells_.cell_of(i);
+        std::size_t m = cells_.gather(&own, 1);
+        const std::uint32_t* buf = cells_.candidates();
+        for (std::size_t k = 0; k < m; ++k) {
+            if (buf[k] > i) meet(i, buf[k]);
+        }
+        std::int32_t cells[CellList<D>::kMaxNeighbours];
+        m = cells_.gather(cells, cells_.forward_neighbours(i, cells));
+        for (std::size_t k = 0; k < m; ++k) meet(i, buf[k]);
+    }
+    for (std::uint32_t i = 0; i < n; ++i) schedule(i, best[i], partner[i]);
 }
 
 template <int D>

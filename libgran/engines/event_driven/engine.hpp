@@ -167,6 +167,9 @@ class EventDrivenEngine {
         events_.commit(i);
     }
     void predict_after_crossing(std::uint32_t i, int axis, int dir);
+    // predict() for every particle (all at now_), each pair's collision time computed once
+    // instead of once from each side; the heap is rebuilt by the caller.
+    void predict_all();
     // Earliest collision of i with the candidates of the given cells, if before best.
     void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
                     std::int32_t& partner);
@@ -246,6 +249,8 @@ class EventDrivenEngine {
 
     void sort_by_cell();
     std::vector<std::uint32_t> id_;
+    std::vector<double> all_best_;  // predict_all(): earliest collision per particle so far
+    std::vector<std::int32_t> all_partner_;
     std::uint64_t events_since_sort_ = 0;
     std::uint64_t sort_every_ = 0;  // events between re-sorts (a few sweeps of N)
 };

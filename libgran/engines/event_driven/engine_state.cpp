@@ -30,7 +30,7 @@ template <int D>
 void EventDrivenEngine<D>::velocities_changed() {
     synchronize();
     for (std::uint32_t i = 0; i < p_.size(); ++i) ++count_[i];
-    for (std::uint32_t i = 0; i < p_.size(); ++i) predict(i);
+    predict_all();
     events_.rebuild();
     ++counters_.full_reschedules;
 }
