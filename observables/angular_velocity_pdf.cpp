@@ -139,7 +139,7 @@ const bool registered = register_plugin<Observable, AngularVelocityPdf>(
     "angular-velocity distributions of rough particles per species, rescaled by sqrt(T_rot/I), "
     "with kurtosis",
     {integer("bins", "60", "histogram bins", 4, 100000),
-     real("range", "6", "sqrt(T_rot/I)", "histograms cover c in [-range, range]", 0, 1e308, true),
+     real("range", "6", "sqrt(T_rot/I)", "histograms cover c in [-range, range]", 0, 1e6, true),
      integer("blocks", "16", "blocks for the error bars of the densities", 2, 1000)},
     kDescription);
 

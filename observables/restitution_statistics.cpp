@@ -5,6 +5,8 @@
 // distribution of alpha_1d in bins of g_a = |v_12,a| / sqrt(2T) (T: mixture temperature of the
 // previous sample); and the energy restitution |v'_12| / |v_12| (Eq. (10)), which exceeds 1 only
 // through rotation. Densities are normalised by all recorded collisions.
+#include <fmt/format.h>
+
 #include <boost/histogram.hpp>
 #include <cmath>
 #include <vector>
@@ -41,8 +43,7 @@ class RestitutionStatistics final : public Observable<D>, public CollisionSink<D
   public:
     RestitutionStatistics(const Params& p, const SceneInfo& info)
         : table_(*info.species),
-          linear_(bh::make_histogram(
-              bh::axis::regular<>(unsigned(p.integer("bins")), p.real("min"), p.real("max")))),
+          linear_(bh::make_histogram(linear_axis(p))),
           tail_(bh::make_histogram(
               bh::axis::regular<double, bh::axis::transform::log>(40, 1.0, 1000.0))),
           energy_(bh::make_histogram(bh::axis::regular<>(100, 0.0, 2.0))) {
@@ -52,11 +53,23 @@ class RestitutionStatistics final : public Observable<D>, public CollisionSink<D
             p.fail("component", "component " + c + " does not exist in this dimension");
         for (double g : p.reals("conditional_g")) {
             conditional_g_.push_back(g);
-            conditional_.push_back(bh::make_histogram(
-                bh::axis::regular<>(unsigned(p.integer("bins")), p.real("min"), p.real("max"))));
+            conditional_.push_back(bh::make_histogram(linear_axis(p)));
             conditional_total_.push_back(0);
         }
         width_g_ = p.real("conditional_width");
+    }
+
+    // The alpha_1d axis [min, max]: refused unless min < max with a finite width (found by
+    // `make fuzz`: min = max and max = 1e308, min = -1e308 escaped as Boost.Histogram errors).
+    static bh::axis::regular<> linear_axis(const Params& p) {
+        const double lo = p.real("min"), hi = p.real("max");
+        if (!(hi > lo) || !std::isfinite(hi - lo)) {
+            p.fail("max",
+                   fmt::format("[min, max] = [{:g}, {:g}] is not an interval of finite width "
+                               "with min < max",
+                               lo, hi));
+        }
+        return bh::axis::regular<>(unsigned(p.integer("bins")), lo, hi);
     }
 
     CollisionSink<D>* collision_sink() override { return this; }

@@ -169,7 +169,7 @@ const bool registered = register_plugin<Observable, SlabVelocityPdf>(
      real("width", "0.1", "", "slab width as a fraction of the box length", 0, 1, true, false),
      integer("bins", "80", "histogram bins", 4, 100000),
      real("range", "8", "thermal velocities",
-          "raw histograms cover +-range thermal velocities of the first sample", 0, 1e308, true),
+          "raw histograms cover +-range thermal velocities of the first sample", 0, 1e6, true),
      integer("blocks", "16", "blocks for the error bars", 2, 1000)},
     kDescription);
 

@@ -158,13 +158,13 @@ const bool registered = register_plugin<Observable, VelocityPdf>(
     "velocity_pdf",
     "velocity distributions per species and component, raw and rescaled by sqrt(T), with kurtosis",
     {integer("bins", "60", "histogram bins", 4, 100000),
-     real("range", "6", "sqrt(T/m)", "rescaled histograms cover c in [-range, range]", 0, 1e308,
+     real("range", "6", "sqrt(T/m)", "rescaled histograms cover c in [-range, range]", 0, 1e6,
           true),
      optional(real(
          "raw_range", "", "velocity",
          "raw histograms cover v in [-raw_range, raw_range] (default: 6 thermal velocities at the "
          "first sample)",
-         0, 1e308, true)),
+         0, 1e300, true)),  // [-1e308, 1e308] would be an axis of infinite width
      integer("blocks", "16", "blocks for the error bars of the densities", 2, 1000)},
     kDescription);
 
