@@ -6,11 +6,15 @@
 // plain timers. Units m = d = g = 1.
 //
 //   gran_bench_dem [--sizes 100,1600,10000] [--warmup-periods P] [--particle-steps X] [--W W]
-//                  [--csv PATH]
+//                  [--threads T] [--csv PATH]
 //
 // --csv appends one row per size to PATH in the columns of gran_bench's results/bench.csv
 // (case,engine,dimension,N,packing_fraction,rate,unit; rate in particle-steps per CPU second),
 // writing the header if the file is new.
+//
+// --threads T runs each step on T threads (DemSettings::threads); the CSV rate is then per
+// wall-clock second (unit particle-steps/wall-s, case suffix _T<T>). The last column, a hash of
+// the final positions and velocities, is the same for any T: the threads change no bit.
 //
 // --W 0 keeps the floor static: the bed settles during the warm-up (periods of the W = 9 drive)
 // and the timed part measures a dense bed at rest (about 6 contacts per grain) instead of the
@@ -25,6 +29,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <numbers>
@@ -51,6 +56,7 @@ struct Options {
     double warmup_periods = 2;
     double particle_steps = 5e7;
     double W = 9;  // (A omega)^2 / (d g); 0: static floor
+    int threads = 1;
     std::string csv;
 };
 
@@ -70,12 +76,14 @@ Options parse(int argc, char** argv) {
             o.particle_steps = std::stod(argv[++i]);
         } else if (a == "--W" && has_value) {
             o.W = std::stod(argv[++i]);
+        } else if (a == "--threads" && has_value) {
+            o.threads = std::stoi(argv[++i]);
         } else if (a == "--csv" && has_value) {
             o.csv = argv[++i];
         } else {
             std::fprintf(stderr,
                          "usage: %s [--sizes 100,1600,10000] [--warmup-periods P] "
-                         "[--particle-steps X] [--W W] [--csv PATH]\n",
+                         "[--particle-steps X] [--W W] [--threads T] [--csv PATH]\n",
                          argv[0]);
             std::exit(2);
         }
@@ -83,18 +91,39 @@ Options parse(int argc, char** argv) {
     return o;
 }
 
+// FNV-1a over the bits of every position and velocity: equal hashes, equal states.
+std::uint64_t state_hash(const Particles<3>& ps) {
+    std::uint64_t h = 1469598103934665603ull;
+    const auto mix = [&](const std::vector<Vec<3>>& xs) {
+        for (const Vec<3>& x : xs) {
+            for (int a = 0; a < 3; ++a) {
+                std::uint64_t bits = 0;
+                std::memcpy(&bits, &x[a], sizeof bits);
+                for (int b = 0; b < 8; ++b) {
+                    h ^= (bits >> (8 * b)) & 0xffu;
+                    h *= 1099511628211ull;
+                }
+            }
+        }
+    };
+    mix(ps.r);
+    mix(ps.v);
+    return h;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     const Options opt = parse(argc, argv);
     const double period = kBedPeriod;
-    std::printf("%8s %6s %10s %14s %14s %10s %10s %8s %10s\n", "N", "width", "steps",
-                "psteps/s_cpu", "psteps/s_wall", "rebuild/st", "contacts/N", "T_z", "max_ovl");
+    std::printf("%8s %6s %10s %14s %14s %10s %10s %8s %10s %18s\n", "N", "width", "steps",
+                "psteps/s_cpu", "psteps/s_wall", "rebuild/st", "contacts/N", "T_z", "max_ovl",
+                "state_hash");
     for (std::size_t n : opt.sizes) {
         const double width = bed_width(n);
         const SpeciesTable table = bed_species(n);
         const ContactTable contacts = bed_contacts(table);
-        DemEngine<3> e = vibrated_bed(table, contacts, n, opt.W);
+        DemEngine<3> e = vibrated_bed(table, contacts, n, opt.W, opt.threads);
         e.advance(opt.warmup_periods * period);
 
         const auto steps =
@@ -112,11 +141,11 @@ int main(int argc, char** argv) {
         for (const auto& v : ps.v) mean += v[2] / double(n);
         for (const auto& v : ps.v) tz += (v[2] - mean) * (v[2] - mean) / double(n);
         const double psteps = double(steps) * double(n);
-        std::printf("%8zu %6.1f %10llu %14.4g %14.4g %10.4f %10.3f %8.3f %10.3g\n", n, width,
+        std::printf("%8zu %6.1f %10llu %14.4g %14.4g %10.4f %10.3f %8.3f %10.3g %18llx\n", n, width,
                     static_cast<unsigned long long>(steps), psteps / cpu, psteps / wall,
                     double(e.counters().rebuilds - before.rebuilds) / double(steps),
                     2.0 * double(contact_sum) / (double(steps) * double(n)), tz,
-                    e.counters().max_overlap);
+                    e.counters().max_overlap, static_cast<unsigned long long>(state_hash(ps)));
         std::fflush(stdout);
         if (!opt.csv.empty()) {
             const bool fresh = !std::ifstream(opt.csv).good();
@@ -128,8 +157,11 @@ int main(int argc, char** argv) {
             if (fresh) out << "case,engine,dimension,N,packing_fraction,rate,unit\n";
             // packing fraction: grains over the bed volume at rest (four layers), as N/(W^2 4d)
             const double phi = double(n) * std::numbers::pi / 6 / (width * width * 4.0);
-            out << "3d_vibrated_bed_W" << opt.W << "_N" << n << ",dem,3," << n << "," << phi << ","
-                << static_cast<long long>(psteps / cpu) << ",particle-steps/s\n";
+            const bool threaded = opt.threads > 1;
+            out << "3d_vibrated_bed_W" << opt.W << "_N" << n
+                << (threaded ? "_T" + std::to_string(opt.threads) : std::string()) << ",dem,3," << n
+                << "," << phi << "," << static_cast<long long>(psteps / (threaded ? wall : cpu))
+                << (threaded ? ",particle-steps/wall-s\n" : ",particle-steps/s\n");
         }
     }
     return 0;

@@ -42,13 +42,14 @@ inline ContactTable bed_contacts(const SpeciesTable& table) {
 
 // The engine for the bed: keep `table` and `contacts` alive as long as it.
 inline DemEngine<3> vibrated_bed(const SpeciesTable& table, const ContactTable& contacts,
-                                 std::size_t n, double W) {
+                                 std::size_t n, double W, int threads = 1) {
     const double width = bed_width(n);
     Box<3> box;
     box.length = Vec<3>(width, width, 80);
     box.periodic = {true, true, false};
     DemSettings settings;
     settings.gravity = {0, 0, -1};
+    settings.threads = threads;
     DemEngine<3> e(box, table, contacts, vibrated_bed_lattice(n, width, 3.0, 1), settings);
     e.remove_wall(2, 1);
     if (W > 0) e.set_wall(2, 0, WallMotion::sinusoid(1.0, std::sqrt(W)), 0);

@@ -83,9 +83,9 @@ SIGHUP, SIGUSR1 and SIGXCPU stop a run and write what was measured (exit 3) and 
 `gran run --resume OUT.h5 [SCENE.yaml]`: continues the run to `OUT.h5` from `OUT.h5.checkpoint`,
 written every `run.checkpoint.interval` seconds (default 300) and when a run is interrupted. The
 result is bit for bit the one an uninterrupted run gives. The checkpoint holds the scene; a scene
-given beside it must resolve to the same one (the checkpoint interval may differ). A checkpoint
-written by another code version, for another scene, damaged or missing is refused (exit 2). See
-[reliability.md](reliability.md).
+given beside it must resolve to the same one (the checkpoint interval and a dem run's
+`engine.threads` may differ). A checkpoint written by another code version, for another scene,
+damaged or missing is refused (exit 2). See [reliability.md](reliability.md).
 
 `gran run --recover OUT.h5`: writes what a killed run had measured up to its last checkpoint to
 `OUT.h5` (status `interrupted`, exit 3) without running; the checkpoint is kept, so

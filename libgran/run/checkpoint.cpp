@@ -87,10 +87,12 @@ std::string emitted(const YAML::Node& n) {
     return em.c_str();
 }
 
-// The resolved scene without the keys a resume may change (the checkpoint interval).
+// The resolved scene without the keys a resume may change: the checkpoint interval, and the
+// threads of a dem run (the same bits for any number).
 std::string comparable(const std::string& resolved) {
     YAML::Node n = YAML::Load(resolved);
     if (n["run"] && n["run"]["checkpoint"]) n["run"].remove("checkpoint");
+    if (n["engine"] && n["engine"]["threads"]) n["engine"].remove("threads");
     return emitted(n);
 }
 

@@ -47,6 +47,7 @@ DemSettings dem_settings(const Scene& sc) {
     s.dt = p.real("dt");
     s.dt_fraction = p.real("dt_fraction");
     s.skin = p.real("skin");
+    s.threads = int(p.integer("threads"));
     s.gravity = sc.gravity;
     return s;
 }
@@ -288,6 +289,10 @@ const bool registered = EngineRegistry::instance().add([] {
              0, 1, true, false),
         real("skin", "0.1", "largest diameter",
              "Verlet-list skin (the list is rebuilt once a grain moved skin / 2)", 0, 10),
+        integer("threads", "1",
+                "threads of one run's steps; every result is the same to the last bit for any "
+                "number (docs/performance.md: when a second thread pays)",
+                1, 256),
         real("probe_speed", "0", "velocity",
              "impact speed of the isolated test collisions reported with the run; 0: sqrt(T0 / "
              "m) of the lightest species",

@@ -142,6 +142,27 @@ TEST_F(Checkpoint, InterruptedRunWithThermalSawtoothAndStaticWallsResumesBitIden
     EXPECT_EQ(performance("resumes"), 1);
 }
 
+// The threads of a dem run change no bit (docs/performance.md), so a resume may use another
+// number: interrupted on one thread, resumed on two with the scene given beside the checkpoint.
+TEST_F(Checkpoint, DemRunInterruptedOnOneThreadResumesBitIdenticallyOnTwo) {
+    run_reference("vibrated_frictional_dem.yaml");
+    if (HasFatalFailure()) return;
+    fs::create_directories(dir_ / "run");
+    const std::string out = path("run/r.h5"), log = path("run/log");
+    {
+        GranProcess p({"run", kScenes + "vibrated_frictional_dem.yaml", "-o", out, "-q"}, log);
+        ASSERT_FALSE(p.wait_up_to(0.1 + 0.4 * reference_s_)) << "ended early: " << read_text(log);
+        p.send(SIGTERM);
+        ASSERT_TRUE(p.wait_up_to(60));
+        ASSERT_EQ(p.exit_code(), 3) << read_text(log);
+    }
+    const auto r = run_gran({"run", "--resume", out, kScenes + "vibrated_frictional_dem.yaml",
+                             "--set", "engine.threads=2", "-q"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    expect_identical_to_reference();
+    EXPECT_EQ(performance("resumes"), 1);
+}
+
 TEST_F(Checkpoint, InterruptedFreeCoolingResumesBitIdentically) {
     run_reference("free_cooling_event_driven.yaml");
     fs::create_directories(dir_ / "run");

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "libgran/core/parallel.hpp"
+
 namespace gran {
 
 namespace {
@@ -87,10 +89,16 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
     bool bounded = false;
     for (int a = 0; a < D; ++a) bounded = bounded || !box_.periodic[std::size_t(a)];
     dt_ = dem_time_step(contacts_, bounded, settings_.dt, settings_.dt_fraction);
+    if (settings_.threads < 1 || settings_.threads > kMaxThreads) {
+        fail("threads must be 1 to " + std::to_string(kMaxThreads) + ", not " +
+             std::to_string(settings_.threads));
+    }
+    threads_ = settings_.threads;
     configure_neighbours();
     allocate_state();
     place_walls();
     list_.configure(box_, neighbour_cutoffs(), ns, n, history_);
+    if (threads_ > 1) list_.enable_by_partner();
     rebuild();
     reevaluate_forces();
 }
@@ -202,9 +210,25 @@ void DemEngine<D>::reevaluate_forces() {
 
 template <int D>
 void DemEngine<D>::step() {
-    const double h = 0.5 * dt_, dt = dt_;
     const std::size_t n = p_.size();
-    const bool rot = p_.rotating();
+    // Largest displacement since the last build, per thread (a maximum: the same for any split).
+    std::array<double, kMaxThreads> moved2{};
+    parallel_chunks(threads_, n, [this, &moved2](std::size_t part, std::size_t i0, std::size_t i1) {
+        moved2[part] = kick_drift(i0, i1);
+    });
+    ++steps_;
+    ++counters_.steps;
+    // Every pair within sigma_ij was within sigma_ij + skin at the last build unless two
+    // particles moved by more than skin / 2 each.
+    if (*std::max_element(moved2.begin(), moved2.end()) > 0.25 * skin_ * skin_) rebuild();
+    accumulate_forces(dt_);  // 3. forces at t + dt (f_, tau_ were zeroed by kick_drift)
+    parallel_chunks(threads_, n,
+                    [this](std::size_t, std::size_t i0, std::size_t i1) { kick(i0, i1); });
+}
+
+template <int D>
+double DemEngine<D>::kick_drift(std::size_t i0, std::size_t i1) {
+    const double h = 0.5 * dt_, dt = dt_;
     const Vec<D> g = g_;
     // Local copies and raw pointers: the stores to positions cannot alias them, so nothing is
     // reloaded per particle.
@@ -213,7 +237,6 @@ void DemEngine<D>::step() {
         period[std::size_t(k)] = box_.periodic[std::size_t(k)] ? box_.length[k] : 0;
     const std::uint32_t* species = p_.species.data();
     const double* inv_mass = inv_mass_.data();
-    const double* inv_inertia = inv_inertia_.data();
     Vec<D>* r = p_.r.data();
     Vec<D>* v = p_.v.data();
     Vec<D>* v_pred = v_pred_.data();
@@ -221,7 +244,7 @@ void DemEngine<D>::step() {
     Vec<D>* disp = disp_.data();
     std::array<std::int32_t, D>* image = p_.image.data();
     double max_disp2 = 0;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = i0; i < i1; ++i) {
         const Vec<D> a = inv_mass[species[i]] * f[i] + g;
         f[i].setZero();            // consumed: the forces of t + dt accumulate here
         v[i] += h * a;             // 1. half kick: v(t + dt/2)
@@ -244,31 +267,104 @@ void DemEngine<D>::step() {
             }
         }
     }
-    if (rot) {
+    if (p_.rotating()) {
+        const double* inv_inertia = inv_inertia_.data();
         AngVec<D>* w = p_.w.data();
         AngVec<D>* w_pred = w_pred_.data();
         AngVec<D>* tau = tau_.data();
-        for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t i = i0; i < i1; ++i) {
             const AngVec<D> alpha = inv_inertia[species[i]] * tau[i];
             tau[i] = ang_zero<D>();
             w[i] += h * alpha;
             w_pred[i] = w[i] + h * alpha;
         }
     }
-    ++steps_;
-    ++counters_.steps;
-    // Every pair within sigma_ij was within sigma_ij + skin at the last build unless two
-    // particles moved by more than skin / 2 each.
-    if (max_disp2 > 0.25 * skin_ * skin_) rebuild();
-    accumulate_forces(dt);  // 3. forces at t + dt (f_, tau_ were zeroed above)
-    for (std::size_t i = 0; i < n; ++i) {
+    return max_disp2;
+}
+
+template <int D>
+void DemEngine<D>::kick(std::size_t i0, std::size_t i1) {
+    const double h = 0.5 * dt_;
+    const Vec<D> g = g_;
+    const std::uint32_t* species = p_.species.data();
+    const double* inv_mass = inv_mass_.data();
+    Vec<D>* v = p_.v.data();
+    const Vec<D>* f = f_.data();
+    for (std::size_t i = i0; i < i1; ++i) {
         v[i] += h * (inv_mass[species[i]] * f[i] + g);  // 4. half kick: v(t + dt)
     }
-    if (rot) {
+    if (p_.rotating()) {
+        const double* inv_inertia = inv_inertia_.data();
         AngVec<D>* w = p_.w.data();
         const AngVec<D>* tau = tau_.data();
-        for (std::size_t i = 0; i < n; ++i) w[i] += (h * inv_inertia[species[i]]) * tau[i];
+        for (std::size_t i = i0; i < i1; ++i) w[i] += (h * inv_inertia[species[i]]) * tau[i];
     }
+}
+
+// The touched entries of every thread, in increasing entry order (the threads' shares are
+// consecutive ranges), added on one thread as the single-threaded loop adds them.
+template <int D>
+void DemEngine<D>::add_touched_pair_forces() {
+    const bool rot = p_.rotating();
+    const std::uint32_t* owner = list_.owner.data();
+    const std::uint32_t* partner = list_.partner.data();
+    const Vec<D>* pf = pair_force_.data();
+    const AngVec<D>* pti = pair_torque_i_.data();
+    const AngVec<D>* ptj = pair_torque_j_.data();
+    Vec<D>* f = f_.data();
+    AngVec<D>* tau = tau_.data();
+    for (const std::vector<std::uint32_t>& part : touched_) {
+        for (const std::uint32_t k : part) {
+            const std::uint32_t i = owner[k], j = partner[k];
+            f[i] += pf[k];
+            f[j] -= pf[k];
+            if (rot) {
+                tau[i] += pti[k];
+                tau[j] += ptj[k];
+            }
+        }
+    }
+}
+
+// Each particle's pair contacts summed from the per-entry slots of the threaded force loop
+// (law_loop.hpp), in the order the single-threaded loop adds them.
+template <int D>
+void DemEngine<D>::sum_pair_forces() {
+    const bool rot = p_.rotating();
+    const std::uint32_t* start = list_.start.data();
+    const std::uint32_t* partner_start = list_.partner_start.data();
+    const std::uint32_t* by_partner = list_.by_partner.data();
+    const std::uint8_t* touching = list_.touching.data();
+    const Vec<D>* pf = pair_force_.data();
+    const AngVec<D>* pti = pair_torque_i_.data();
+    const AngVec<D>* ptj = pair_torque_j_.data();
+    Vec<D>* f = f_.data();
+    AngVec<D>* tau = tau_.data();
+    parallel_chunks(threads_, p_.size(), [&](std::size_t, std::size_t x0, std::size_t x1) {
+        for (std::size_t x = x0; x < x1; ++x) {
+            // As partner j (entries of lower-index owners: earlier rows, so first), then as
+            // owner i (its own row).
+            Vec<D> fx = f[x];
+            for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
+                const std::uint32_t k = by_partner[q];
+                if (touching[k]) fx -= pf[k];
+            }
+            for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
+                if (touching[k]) fx += pf[k];
+            }
+            f[x] = fx;
+            if (!rot) continue;
+            AngVec<D> tx = tau[x];
+            for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
+                const std::uint32_t k = by_partner[q];
+                if (touching[k]) tx += ptj[k];
+            }
+            for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
+                if (touching[k]) tx += pti[k];
+            }
+            tau[x] = tx;
+        }
+    });
 }
 
 template <int D>

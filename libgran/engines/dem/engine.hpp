@@ -49,6 +49,7 @@ struct DemSettings {
     double dt_fraction = 1.0 / 50;           // of the shortest contact duration, when dt = 0
     std::array<double, 3> gravity{0, 0, 0};  // uniform acceleration g (the body force b of A1)
     double skin = 0.1;                       // Verlet skin in units of the largest diameter
+    int threads = 1;  // threads of a step; the results are the same bits for any number
 };
 
 struct DemCounters {
@@ -179,6 +180,35 @@ class DemEngine {
     void pair_forces(double dt_advance);
     template <class L, bool Rot>
     void wall_forces(double dt_advance);
+    struct WallTouch {  // a wall contact of a threaded step: its normal force, for the impulse
+        double f_n;
+        std::uint32_t particle, wall;
+    };
+    template <class L, bool Rot>
+    void wall_range(double dt_advance, std::size_t i0, std::size_t i1,
+                    std::array<double, 2 * D>& impulse, std::array<std::uint64_t, 2 * D>& formed,
+                    double& worst, std::vector<WallTouch>* touched);
+    // Contacts counted by one thread's share of the entries.
+    struct PairTally {
+        std::uint64_t formed = 0, active = 0;
+        double worst = 0;  // largest delta / sigma_ij
+        void add(const PairTally& o) {
+            formed += o.formed;
+            active += o.active;
+            worst = o.worst > worst ? o.worst : worst;
+        }
+    };
+    template <class L, bool Rot, bool Slots>
+    void pair_range(double dt_advance, std::size_t k0, std::size_t k1, PairTally& tally,
+                    std::vector<std::uint32_t>* touched);
+    // Threaded pair forces, in the serial order: each particle's sum of its per-entry slots
+    // (many contacts), or the touched entries added one after another (few).
+    void sum_pair_forces();
+    void add_touched_pair_forces();
+    // Step stages over particles [i0, i1): the first half kick and the drift (returns the
+    // largest squared displacement since the last build), and the second half kick.
+    double kick_drift(std::size_t i0, std::size_t i1);
+    void kick(std::size_t i0, std::size_t i1);
 
     Box<D> box_;
     ContactTable contacts_;
@@ -205,6 +235,14 @@ class DemEngine {
     std::vector<Vec<D>> wall_spring_;          // n x 2D, history laws only
 
     DemNeighbourList<D> list_;
+    // Threaded steps (threads_ > 1): per-entry contact forces and torques, per-thread tallies.
+    static constexpr int kMaxThreads = 256;
+    int threads_ = 1;
+    std::vector<Vec<D>> pair_force_;
+    std::vector<AngVec<D>> pair_torque_i_, pair_torque_j_;
+    std::vector<PairTally> tallies_;
+    std::vector<std::vector<std::uint32_t>> touched_;   // per thread: its entries in contact
+    std::vector<std::vector<WallTouch>> wall_touched_;  // per thread: its wall contacts
     std::array<Wall, 2 * D> walls_{};
     std::array<double, 2 * D> wall_impulse_{};
     std::array<std::uint64_t, 2 * D> wall_hits_{};

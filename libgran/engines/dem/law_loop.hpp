@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 
+#include "libgran/core/parallel.hpp"
 #include "libgran/core/registry.hpp"
 #include "libgran/engines/dem/engine.hpp"
 
@@ -26,12 +27,57 @@ void DemEngine<D>::accumulate_forces_with(double dt_advance) {
 }
 
 // Pair contacts over the half neighbour list: force on i, its opposite on j (Newton's third law
-// exactly, so the total momentum changes by round-off only). Raw pointers throughout (the byte
-// stores to the contact flags may alias anything, which would reload every vector's data pointer
-// per entry); nothing is written for an entry that neither touches nor touched.
+// exactly, so the total momentum changes by round-off only).
+//
+// One thread sums each contact into f_ and tau_ as it goes, entry by entry. Several threads
+// (DemSettings::threads) compute the contacts of their share of the entries into per-entry slots,
+// then each particle sums its slots in the order the single thread adds them (its entries as
+// partner, which come first since partners have the higher index, then its own row): the same
+// additions in the same order, so the forces are the same bits for any thread count.
 template <int D>
 template <class L, bool Rot>
 void DemEngine<D>::pair_forces(double dt_advance) {
+    PairTally total{0, 0, counters_.max_overlap};
+    if (threads_ <= 1) {
+        pair_range<L, Rot, false>(dt_advance, 0, list_.entries(), total, nullptr);
+    } else {
+        const std::size_t entries = list_.entries();
+        pair_force_.resize(entries);
+        if constexpr (Rot) {
+            pair_torque_i_.resize(entries);
+            pair_torque_j_.resize(entries);
+        }
+        tallies_.assign(std::size_t(threads_), total);
+        touched_.resize(std::size_t(threads_));
+        parallel_chunks(threads_, entries,
+                        [this, dt_advance](std::size_t part, std::size_t k0, std::size_t k1) {
+                            touched_[part].clear();
+                            pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part],
+                                                     &touched_[part]);
+                        });
+        for (const PairTally& t : tallies_) total.add(t);
+        // Few contacts (a dilute gas): adding them on one thread, in entry order, costs less
+        // than each particle visiting all its entries.
+        if (4 * total.active < p_.size()) {
+            add_touched_pair_forces();
+        } else {
+            sum_pair_forces();
+        }
+    }
+    counters_.contacts += total.formed;
+    counters_.active_contacts = total.active;
+    counters_.max_overlap = total.worst;
+}
+
+// The contacts of entries [k0, k1): summed into f_, tau_ (Slots false) or stored in the entries'
+// slots with their entries appended to `touched` (Slots true); the tallies added to `tally`. Raw
+// pointers in locals throughout (the byte stores to the contact flags may alias anything, which
+// would reload every vector's data pointer per entry); nothing is written for an entry that neither
+// touches nor touched.
+template <int D>
+template <class L, bool Rot, bool Slots>
+void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1, PairTally& tally,
+                              std::vector<std::uint32_t>* touched) {
     constexpr bool kHistory = L::history;
     const std::size_t ns = mass_.size();
     const typename L::Pair* params = contacts_.template contacts<L>();
@@ -41,7 +87,7 @@ void DemEngine<D>::pair_forces(double dt_advance) {
     const double* sigma = sigma_.data();
     const AngVec<D> zero = ang_zero<D>();
     std::uint64_t formed = 0, active = 0;
-    double worst = counters_.max_overlap;
+    double worst = tally.worst;
     // Minimum image per component without branches on the axis kind: a bounded axis has period
     // 0 and half-period infinity. Scalars, not a vector patched in memory (store forwarding).
     std::array<double, D> period{}, half{};
@@ -50,7 +96,6 @@ void DemEngine<D>::pair_forces(double dt_advance) {
         period[k] = per ? box_.length[int(k)] : 0.0;
         half[k] = per ? 0.5 * box_.length[int(k)] : kInf;
     }
-    const std::size_t entries = list_.entries();
     const std::uint32_t* owner = list_.owner.data();
     const std::uint32_t* partner = list_.partner.data();
     std::uint8_t* touching = list_.touching.data();
@@ -64,8 +109,11 @@ void DemEngine<D>::pair_forces(double dt_advance) {
     const double* radius = radius_.data();
     Vec<D>* f = f_.data();
     AngVec<D>* tau = tau_.data();
+    Vec<D>* slot_force = pair_force_.data();
+    AngVec<D>* slot_torque_i = pair_torque_i_.data();
+    AngVec<D>* slot_torque_j = pair_torque_j_.data();
     // One flat loop over the entries (no per-row branches: most rows of a dilute gas are empty).
-    for (std::size_t k = 0; k < entries; ++k) {
+    for (std::size_t k = k0; k < k1; ++k) {
         const std::uint32_t i = owner[k], j = partner[k];
         const std::uint32_t si = species[i], sj = species[j];
         const typename L::Pair& P = params[class_of[si] * classes + class_of[sj]];
@@ -91,7 +139,9 @@ void DemEngine<D>::pair_forces(double dt_advance) {
         touching[k] = 1;
         ++active;
         if (forms) ++formed;
-        if (delta > worst * sigma_ij) worst = delta / sigma_ij;
+        // The largest relative overlap: a maximum, the same whatever order entries come in.
+        const double relative = delta / sigma_ij;
+        worst = relative > worst ? relative : worst;
         const double li = radius[si], lj = radius[sj];
         AngVec<D> wpi = zero, wpj = zero, whi = zero, whj = zero;
         if constexpr (Rot) {
@@ -123,29 +173,94 @@ void DemEngine<D>::pair_forces(double dt_advance) {
                 return L::template force<D>(P, delta, nrm, g, li, lj, unused);
             }
         }();
-        f[i] += c.force;
-        f[j] -= c.force;
-        if constexpr (Rot) {
-            tau[i] += c.torque_i;
-            tau[j] += c.torque_j;
+        if constexpr (Slots) {
+            touched->push_back(std::uint32_t(k));
+            slot_force[k] = c.force;
+            if constexpr (Rot) {
+                slot_torque_i[k] = c.torque_i;
+                slot_torque_j[k] = c.torque_j;
+            }
+        } else {
+            f[i] += c.force;
+            f[j] -= c.force;
+            if constexpr (Rot) {
+                tau[i] += c.torque_i;
+                tau[j] += c.torque_j;
+            }
         }
     }
-    counters_.contacts += formed;
-    counters_.active_contacts = active;
-    counters_.max_overlap = worst;
+    (void)f;
+    (void)tau;
+    (void)slot_force;
+    (void)slot_torque_i;
+    (void)slot_torque_j;
+    (void)touched;
+    tally.formed += formed;
+    tally.active += active;
+    tally.worst = worst;
 }
 
 // Plane walls: the particle against an infinite mass (m_eff = m_i, lever arm 0 on the wall side)
 // moving along its normal with velocity u(t): v_j = u n_axis in the relative velocity (A3).
+// Each particle's wall forces are added wall by wall, so a split of the particles between
+// threads changes no bit of them; the normal forces that make each wall's impulse are summed
+// afterwards in particle order (one thread: as they come).
 template <int D>
 template <class L, bool Rot>
 void DemEngine<D>::wall_forces(double dt_advance) {
+    const std::size_t n = p_.size();
+    double worst = counters_.max_overlap;
+    std::array<double, 2 * D> impulse{};
+    std::array<std::uint64_t, 2 * D> formed{};
+    if (threads_ <= 1) {
+        wall_range<L, Rot>(dt_advance, 0, n, impulse, formed, worst, nullptr);
+    } else {
+        wall_touched_.resize(std::size_t(threads_));
+        std::array<double, kMaxThreads> worst_of{};
+        std::array<std::array<std::uint64_t, 2 * D>, kMaxThreads> formed_of{};
+        parallel_chunks(threads_, n, [&, this](std::size_t part, std::size_t i0, std::size_t i1) {
+            std::array<double, 2 * D> unused{};
+            wall_touched_[part].clear();
+            worst_of[part] = worst;
+            wall_range<L, Rot>(dt_advance, i0, i1, unused, formed_of[part], worst_of[part],
+                               &wall_touched_[part]);
+        });
+        for (std::size_t part = 0; part < wall_touched_.size(); ++part) {
+            worst = worst_of[part] > worst ? worst_of[part] : worst;
+            for (std::size_t c = 0; c < 2 * D; ++c) formed[c] += formed_of[part][c];
+        }
+        // Wall by wall, the touched particles in increasing index: the single thread's order.
+        for (std::size_t c = 0; c < 2 * D; ++c) {
+            for (const auto& part : wall_touched_) {
+                for (const WallTouch& t : part) {
+                    if (t.wall == c) impulse[c] += t.f_n;
+                }
+            }
+        }
+    }
+    for (std::size_t c = 0; c < 2 * D; ++c) {
+        if (!walls_[c].present) continue;
+        wall_impulse_[c] += impulse[c] * dt_advance;
+        wall_hits_[c] += formed[c];
+        counters_.wall_contacts += formed[c];
+    }
+    counters_.max_overlap = worst;
+}
+
+// The wall contacts of particles [i0, i1): forces and torques added to f_, tau_; normal forces
+// summed into `impulse` (touched null) or appended to `touched`; contacts formed and the largest
+// relative overlap into `formed` and `worst`.
+template <int D>
+template <class L, bool Rot>
+void DemEngine<D>::wall_range(double dt_advance, std::size_t i0, std::size_t i1,
+                              std::array<double, 2 * D>& impulse,
+                              std::array<std::uint64_t, 2 * D>& formed, double& worst,
+                              std::vector<WallTouch>* touched) {
     constexpr bool kHistory = L::history;
     constexpr std::size_t kWalls = 2 * D;
-    const std::size_t n = p_.size();
     const AngVec<D> zero = ang_zero<D>();
     const double t = now();
-    double worst = counters_.max_overlap;
+    double most = worst;
     for (std::size_t c = 0; c < kWalls; ++c) {
         const Wall& w = walls_[c];
         if (!w.present) continue;
@@ -158,15 +273,15 @@ void DemEngine<D>::wall_forces(double dt_advance) {
         nrm[a] = inward;  // into the gas
         Vec<D> vw = Vec<D>::Zero();
         vw[a] = w.motion.velocity(t);
-        double impulse = 0;
-        std::uint64_t formed = 0;
+        double sum = 0;
+        std::uint64_t count = 0;
         // Raw pointers (the byte stores to the contact flags may alias anything); a flag is
         // written only when it changes.
         const std::uint32_t* species = p_.species.data();
         const double* radius = radius_.data();
         const Vec<D>* r = p_.r.data();
         std::uint8_t* touching_of = wall_touching_.data() + c;
-        for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t i = i0; i < i1; ++i) {
             const std::uint32_t s = species[i];
             const double R = radius[s];
             const double gap = inward * (r[i][a] - surface) - R;
@@ -178,9 +293,10 @@ void DemEngine<D>::wall_forces(double dt_advance) {
             const double delta = -gap;
             const bool forms = touching == 0;
             touching = 1;
-            if (forms) ++formed;
+            if (forms) ++count;
             const typename L::Pair& P = params[s];
-            if (delta > worst * 2 * R) worst = 0.5 * delta / R;
+            const double relative = 0.5 * delta / R;
+            most = relative > most ? relative : most;
             AngVec<D> wpi = zero, whi = zero;
             if constexpr (Rot) {
                 wpi = w_pred_[i];
@@ -205,13 +321,16 @@ void DemEngine<D>::wall_forces(double dt_advance) {
             }();
             f_[i] += cf.force;
             if constexpr (Rot) tau_[i] += cf.torque_i;
-            impulse += cf.f_n;
+            if (touched) {
+                touched->push_back({cf.f_n, std::uint32_t(i), std::uint32_t(c)});
+            } else {
+                sum += cf.f_n;
+            }
         }
-        wall_impulse_[c] += impulse * dt_advance;
-        wall_hits_[c] += formed;
-        counters_.wall_contacts += formed;
+        impulse[c] += sum;
+        formed[c] += count;
     }
-    counters_.max_overlap = worst;
+    worst = most;
 }
 
 // Elastic energy in the contacts: normal and tangential springs of the current pair and wall

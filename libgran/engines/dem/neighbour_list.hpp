@@ -46,6 +46,14 @@ class DemNeighbourList {
     std::vector<std::uint32_t> owner;    // i of each entry (the row it belongs to)
     std::vector<std::uint8_t> touching;  // 1: in contact at the last force evaluation
     std::vector<Vec<D>> spring;          // tangential spring xi (history laws only)
+    // The entries seen from their partner, for force sums split over threads (enable_by_partner):
+    // the entries k with partner[k] == j are by_partner[partner_start[j]] ..
+    // by_partner[partner_start[j + 1] - 1], in increasing k. Rebuilt by each build.
+    std::vector<std::uint32_t> partner_start, by_partner;
+    void enable_by_partner() {
+        by_partner_on_ = true;
+        index_by_partner();
+    }
 
     // The entries in their order (the order forces are summed in) with their contact state, and
     // the grid of the last build; the rest is rebuilt by each build.
@@ -64,6 +72,7 @@ class DemNeighbourList {
         ar.io(near_);
         ar.io(shift_);
         ar.io(cell_start_);
+        if (by_partner_on_) index_by_partner();  // derived from the entries just saved or loaded
     }
 
   private:
@@ -78,7 +87,10 @@ class DemNeighbourList {
     template <bool MinImage>
     void find_pairs(const Box<D>& box);
 
+    void index_by_partner();
+
     bool history_ = false;
+    bool by_partner_on_ = false;
     std::size_t ns_ = 0;
     double widest_ = 0;
     std::size_t cap_ = 0;          // most cells
@@ -102,6 +114,7 @@ class DemNeighbourList {
     std::vector<std::uint32_t> ss_;          // species by slot
     std::vector<std::uint64_t> pairs_;       // (i << 32 | j), i < j, in cell order
     std::vector<Carried> carried_;
+    std::vector<std::uint32_t> fill_;  // index_by_partner(): next free slot per partner
 };
 
 extern template class DemNeighbourList<2>;

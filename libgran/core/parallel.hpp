@@ -1,0 +1,45 @@
+#pragma once
+// Splitting a loop over [0, n) into one contiguous chunk per thread (OpenMP from the toolchain).
+// The chunking is only a schedule: callers make their results independent of it (each index
+// writes its own slots; sums run in a fixed order afterwards), so a run gives the same bits for
+// any thread count. One thread calls the body directly: no runtime call, no outlined function,
+// the serial code exactly as written.
+#include <cstddef>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gran {
+
+// Chunk `part` of `parts` of [0, n): the first n % parts chunks are one longer.
+inline void chunk_bounds(std::size_t n, std::size_t part, std::size_t parts, std::size_t& begin,
+                         std::size_t& end) {
+    const std::size_t base = n / parts, extra = n % parts;
+    begin = part * base + (part < extra ? part : extra);
+    end = begin + base + (part < extra ? 1 : 0);
+}
+
+// body(part, begin, end) for every chunk, on `threads` threads (at most; fewer if the runtime
+// grants fewer). `part` indexes per-thread scratch (at most `threads` parts).
+template <class Body>
+void parallel_chunks(int threads, std::size_t n, Body&& body) {
+#ifdef _OPENMP
+    if (threads > 1) {
+#pragma omp parallel num_threads(threads)
+        {
+            const auto parts = static_cast<std::size_t>(omp_get_num_threads());
+            const auto part = static_cast<std::size_t>(omp_get_thread_num());
+            std::size_t begin = 0, end = 0;
+            chunk_bounds(n, part, parts, begin, end);
+            body(part, begin, end);
+        }
+        return;
+    }
+#else
+    (void)threads;
+#endif
+    body(std::size_t(0), std::size_t(0), n);
+}
+
+}  // namespace gran
