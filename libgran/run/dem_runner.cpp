@@ -290,8 +290,9 @@ const bool registered = EngineRegistry::instance().add([] {
         real("skin", "0.1", "largest diameter",
              "Verlet-list skin (the list is rebuilt once a grain moved skin / 2)", 0, 10),
         integer("threads", "1",
-                "threads of one run's steps; every result is the same to the last bit for any "
-                "number (docs/performance.md: when a second thread pays)",
+                "threads of one run's steps, at most one per 4096 grains; every result is the "
+                "same to the last bit for any number (docs/performance.md: what a second "
+                "thread gains)",
                 1, 256),
         real("probe_speed", "0", "velocity",
              "impact speed of the isolated test collisions reported with the run; 0: sqrt(T0 / "

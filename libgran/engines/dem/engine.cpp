@@ -93,7 +93,9 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
         fail("threads must be 1 to " + std::to_string(kMaxThreads) + ", not " +
              std::to_string(settings_.threads));
     }
-    threads_ = settings_.threads;
+    const std::size_t per_thread = std::max<std::size_t>(1, settings_.min_particles_per_thread);
+    threads_ = int(std::min<std::size_t>(std::size_t(settings_.threads),
+                                         std::max<std::size_t>(1, p_.size() / per_thread)));
     configure_neighbours();
     allocate_state();
     place_walls();

@@ -50,6 +50,10 @@ struct DemSettings {
     std::array<double, 3> gravity{0, 0, 0};  // uniform acceleration g (the body force b of A1)
     double skin = 0.1;                       // Verlet skin in units of the largest diameter
     int threads = 1;  // threads of a step; the results are the same bits for any number
+    // Fewer threads for fewer particles: each thread gets at least this many (a step of a small
+    // system is shorter than the threads' hand-overs, and a thread that waits for a busy core
+    // stalls every step).
+    std::size_t min_particles_per_thread = 4096;
 };
 
 struct DemCounters {
@@ -111,6 +115,7 @@ class DemEngine {
 
     double now() const { return t_start_ + double(steps_) * dt_; }
     double dt() const { return dt_; }
+    int threads() const { return threads_; }  // the threads a step uses (DemSettings::threads)
     const Particles<D>& particles() const { return p_; }
     const Box<D>& box() const { return box_; }
     const Vec<D>& gravity() const { return g_; }

@@ -102,7 +102,9 @@ DemEngine<D> bed_engine(const Bed<D>& b, int threads) {
     s.gravity = {0, 0, 0};
     s.gravity[std::size_t(D - 1)] = -1;
     s.threads = threads;
+    s.min_particles_per_thread = 100;  // small systems, really split
     DemEngine<D> e(b.box, b.table, b.contacts, b.particles, s);
+    EXPECT_EQ(e.threads(), threads);
     if (!b.box.periodic[D - 1]) e.set_wall(D - 1, 0, WallMotion::sinusoid(0.2, 10.0), 0);
     return e;
 }
@@ -205,6 +207,16 @@ TEST(DemThreads, CheckpointOfOneThreadContinuesBitIdenticallyOnTwo) {
     }
     EXPECT_GT(straight.counters().active_contacts, 100u);
     expect_same_state(straight, second, "resumed on 2 threads");
+}
+
+TEST(DemThreads, SmallSystemsUseOneThreadPerMinimumShare) {
+    const Bed<3> bed = dense_bed<3>(1000);
+    DemSettings s;
+    s.threads = 8;
+    s.min_particles_per_thread = 300;  // 1000 grains: 3 shares
+    EXPECT_EQ(DemEngine<3>(bed.box, bed.table, bed.contacts, bed.particles, s).threads(), 3);
+    s.min_particles_per_thread = 4096;  // the default: fewer grains than one share
+    EXPECT_EQ(DemEngine<3>(bed.box, bed.table, bed.contacts, bed.particles, s).threads(), 1);
 }
 
 TEST(DemThreads, RefusesAThreadCountOutsideOneTo256) {
