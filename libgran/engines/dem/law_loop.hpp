@@ -100,6 +100,10 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
     const std::uint32_t* partner = list_.partner.data();
     std::uint8_t* touching = list_.touching.data();
     Vec<D>* spring = list_.spring.data();
+    // The touched list on this thread's stack while it grows: the threads' lists sit side by
+    // side in touched_, and growing them there made every contact move a shared cache line.
+    std::vector<std::uint32_t> mine;
+    if (touched) mine.swap(*touched);
     const Vec<D>* r = p_.r.data();
     const Vec<D>* v = p_.v.data();
     const Vec<D>* v_pred = v_pred_.data();
@@ -174,7 +178,7 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
             }
         }();
         if constexpr (Slots) {
-            touched->push_back(std::uint32_t(k));
+            mine.push_back(std::uint32_t(k));
             slot_force[k] = c.force;
             if constexpr (Rot) {
                 slot_torque_i[k] = c.torque_i;
@@ -194,7 +198,7 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
     (void)slot_force;
     (void)slot_torque_i;
     (void)slot_torque_j;
-    (void)touched;
+    if (touched) touched->swap(mine);
     tally.formed += formed;
     tally.active += active;
     tally.worst = worst;
@@ -261,6 +265,8 @@ void DemEngine<D>::wall_range(double dt_advance, std::size_t i0, std::size_t i1,
     const AngVec<D> zero = ang_zero<D>();
     const double t = now();
     double most = worst;
+    std::vector<WallTouch> mine;  // on this thread's stack while it grows (see pair_range)
+    if (touched) mine.swap(*touched);
     for (std::size_t c = 0; c < kWalls; ++c) {
         const Wall& w = walls_[c];
         if (!w.present) continue;
@@ -322,7 +328,7 @@ void DemEngine<D>::wall_range(double dt_advance, std::size_t i0, std::size_t i1,
             f_[i] += cf.force;
             if constexpr (Rot) tau_[i] += cf.torque_i;
             if (touched) {
-                touched->push_back({cf.f_n, std::uint32_t(i), std::uint32_t(c)});
+                mine.push_back({cf.f_n, std::uint32_t(i), std::uint32_t(c)});
             } else {
                 sum += cf.f_n;
             }
@@ -330,6 +336,7 @@ void DemEngine<D>::wall_range(double dt_advance, std::size_t i0, std::size_t i1,
         impulse[c] += sum;
         formed[c] += count;
     }
+    if (touched) touched->swap(mine);
     worst = most;
 }
 
