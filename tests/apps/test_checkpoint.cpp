@@ -142,9 +142,11 @@ TEST_F(Checkpoint, InterruptedRunWithThermalSawtoothAndStaticWallsResumesBitIden
     EXPECT_EQ(performance("resumes"), 1);
 }
 
-// The threads of a dem run change no bit (docs/performance.md), so a resume may use another
-// number: interrupted on one thread, resumed on two with the scene given beside the checkpoint.
-TEST_F(Checkpoint, DemRunInterruptedOnOneThreadResumesBitIdenticallyOnTwo) {
+// The threads of a dem run change no bit (docs/performance.md), so a resume may ask for another
+// number: interrupted with one thread, resumed with engine.threads=2 and the scene given beside
+// the checkpoint. (This scene is smaller than one thread's share, so it still runs on one; the
+// split itself across a checkpoint is DemThreads.CheckpointOfOneThreadContinuesBitIdenticallyOnTwo.)
+TEST_F(Checkpoint, DemRunResumesBitIdenticallyWithAnotherThreadCount) {
     run_reference("vibrated_frictional_dem.yaml");
     if (HasFatalFailure()) return;
     fs::create_directories(dir_ / "run");
