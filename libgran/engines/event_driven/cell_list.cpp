@@ -13,22 +13,23 @@ void CellList<D>::build(const Box<D>& box, double width, const std::vector<Vec<D
     size_grid(box, width, n_);
     find_images(box);
     slots_ = double(n_) >= 0.25 * double(total_);
-    // At most 4 equal disks (8 spheres) have centres in a cell one diameter wide; smaller species
-    // may need more, and grow() doubles the capacity then.
-    capacity_ = D == 2 ? 4 : 8;
+    // Blocks of 16 bytes in 2D (3 disks) and 32 in 3D (7 spheres): 4 equal disks (8 spheres) fit
+    // in a cell one diameter wide only in a square (cubic) arrangement with a gap, and smaller
+    // species may need more; grow() doubles the blocks then.
+    stride_ = D == 2 ? 4 : 8;
     if (slots_) {
-        cell_count_.assign(total_, 0);
-        cell_ids_.assign(total_ * std::size_t(capacity_), 0);
+        blocks_.assign(total_ * std::size_t(stride_), 0);
     } else {
         head_.assign(total_, -1);
     }
-    // A gather copies whole slots: up to 27 cells' worth past the last candidate.
-    gather_.assign(n_ + 28 * std::size_t(capacity_), 0);
+    // A gather copies whole blocks (27 cells' worth at most); a linked-list gather may collect
+    // every particle. Each layout keeps only its own per-particle arrays (memory at N = 10^6).
+    gather_.assign(slots_ ? 28 * std::size_t(stride_) : n_ + 1, 0);
     cc_.assign(n_, {});
     cell_of_.assign(n_, -1);
-    slot_.assign(n_, 0);
-    next_.assign(n_, -1);
-    prev_.assign(n_, -1);
+    slot_.assign(slots_ ? n_ : 0, 0);
+    next_.assign(slots_ ? 0 : n_, -1);
+    prev_.assign(slots_ ? 0 : n_, -1);
     for (std::uint32_t i = 0; i < n_; ++i) {
         std::array<std::int32_t, D> cc;
         for (int a = 0; a < D; ++a) {
@@ -89,14 +90,14 @@ void CellList<D>::find_images(const Box<D>& box) {
 
 template <int D>
 void CellList<D>::grow() {
-    const std::int32_t cap = 2 * capacity_;
-    decltype(cell_ids_) ids(cell_count_.size() * std::size_t(cap), 0);
-    for (std::size_t c = 0; c < cell_count_.size(); ++c) {
-        std::copy_n(&cell_ids_[c * capacity_], cell_count_[c], &ids[c * cap]);
+    const std::size_t old = std::size_t(stride_), stride = 2 * old;
+    decltype(blocks_) grown(total_ * stride, 0);
+    for (std::size_t c = 0; c < total_; ++c) {
+        std::copy_n(&blocks_[c * old], 1 + blocks_[c * old], &grown[c * stride]);
     }
-    cell_ids_.swap(ids);
-    capacity_ = cap;
-    gather_.assign(n_ + 28 * std::size_t(cap), 0);
+    blocks_.swap(grown);
+    stride_ = std::int32_t(stride);
+    gather_.assign(28 * stride, 0);
 }
 
 template <int D>
@@ -121,7 +122,7 @@ void CellList<D>::reorder(const std::vector<std::uint32_t>& order) {
     apply_order(cc_, order);
     apply_order(cell_of_, order);
     // Refilled in the new order, so each cell's contents run in increasing storage order.
-    std::fill(cell_count_.begin(), cell_count_.end(), 0);
+    if (slots_) clear_counts();
     std::fill(head_.begin(), head_.end(), -1);
     for (std::size_t k = 0; k < n_; ++k) insert(std::uint32_t(k), cell_of_[k]);
 }

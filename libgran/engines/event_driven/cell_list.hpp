@@ -6,10 +6,12 @@
 //    one (see build()); at most cell_cap(N) cells. Periodic axes with one cell need every image of
 //    a partner within reach tried: image_offsets().
 //  - Contents, two layouts chosen by occupancy in build():
-//    - dense (>= 0.25 particles per cell): fixed-capacity slots of ids plus a count per cell. A
-//      scan gathers the ids of all neighbouring cells without branches (whole slots are copied,
-//      the write position advances by the count), so the unpredictable "how many particles in
-//      this cell" branch is not paid per cell (+18% at phi 0.2-0.3 in 3D);
+//    - dense (>= 0.25 particles per cell): one fixed-size block per cell, its count followed by
+//      the ids (count and ids share a cache line: at N = 10^6 a separate count array was one more
+//      line from memory per cell row of a scan). A scan gathers the ids of all neighbouring cells
+//      without branches (whole blocks are copied, the write position advances by the count), so
+//      the unpredictable "how many particles in this cell" branch is not paid per cell (+18% at
+//      phi 0.2-0.3 in 3D);
 //    - dilute: doubly linked lists (a few bytes per mostly empty cell; slots cost -30 to -45% at
 //      N = 1e5, phi = 0.1, through cache misses).
 //  - Neighbour cells computed from cell coordinates (a per-cell table falls out of cache at 1e5).
@@ -20,30 +22,19 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <new>
 #include <vector>
 
 #include "libgran/core/box.hpp"
+#include "libgran/core/cache_line.hpp"
 #include "libgran/core/state_archive.hpp"
 #include "libgran/core/vec.hpp"
 
 namespace gran {
 
-// Allocates on 64-byte boundaries: a cell's slots (32 bytes in 3D, 16 in 2D) then never straddle
-// two cache lines, whatever the allocation history (in one layout the gather's memcpy of
-// straddling slots took 1.3-1.7x longer: perf, gran_bench_features at phi 0.3 in 3D).
-template <class T>
-struct CacheLineAllocator {
-    using value_type = T;
-    static constexpr std::align_val_t kAlign{64};
-    CacheLineAllocator() = default;
-    template <class U>
-    CacheLineAllocator(const CacheLineAllocator<U>&) {}
-    T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
-    void deallocate(T* p, std::size_t) { ::operator delete(p, kAlign); }
-    bool operator==(const CacheLineAllocator&) const { return true; }
-};
-
+// The blocks are allocated on 64-byte boundaries (CacheLineAllocator): a cell's block (32 bytes in
+// 3D, 16 in 2D) then never straddles two cache lines, whatever the allocation history (in one
+// layout the gather's memcpy of straddling slots took 1.3-1.7x longer: perf, gran_bench_features
+// at phi 0.3 in 3D).
 template <int D>
 class CellList {
   public:
@@ -141,10 +132,10 @@ class CellList {
         std::uint32_t* buf = gather_.data();
         std::size_t n = 0;
         if (slots_) {
-            // The usual capacities get a copy of constant size, which the compiler inlines as a
+            // The usual block sizes get a copy of constant size, which the compiler inlines as a
             // few vector moves; a copy of run-time size is a libc memmove call per cell (15.6% of
-            // the cycles of 3D phi 0.3 in issue 15's profile). Grown capacities take that path.
-            switch (capacity_) {
+            // the cycles of 3D phi 0.3 in issue 15's profile). Grown blocks take that path.
+            switch (stride_) {
                 case 4:
                     return gather_slots<4>(cells, ncells, buf);
                 case 8:
@@ -154,11 +145,11 @@ class CellList {
                 default:
                     break;
             }
-            const std::size_t cap = std::size_t(capacity_);
+            const std::size_t stride = std::size_t(stride_);
             for (int k = 0; k < ncells; ++k) {
-                const std::size_t c = std::size_t(cells[k]);
-                std::copy_n(&cell_ids_[c * cap], cap, buf + n);
-                n += std::size_t(cell_count_[c]);
+                const std::uint32_t* block = &blocks_[std::size_t(cells[k]) * stride];
+                std::copy_n(block + 1, stride - 1, buf + n);
+                n += block[0];
             }
         } else {
             for (int k = 0; k < ncells; ++k) {
@@ -208,13 +199,13 @@ class CellList {
             stride *= nc;
         }
     }
-    template <std::size_t Cap>
+    template <std::size_t Stride>
     std::size_t gather_slots(const std::int32_t* cells, int ncells, std::uint32_t* buf) const {
         std::size_t n = 0;
         for (int k = 0; k < ncells; ++k) {
-            const std::size_t c = std::size_t(cells[k]);
-            std::memcpy(buf + n, &cell_ids_[c * Cap], Cap * sizeof(std::uint32_t));
-            n += std::size_t(cell_count_[c]);
+            const std::uint32_t* block = &blocks_[std::size_t(cells[k]) * Stride];
+            std::memcpy(buf + n, block + 1, (Stride - 1) * sizeof(std::uint32_t));
+            n += block[0];
         }
         return n;
     }
@@ -232,10 +223,11 @@ class CellList {
             head_[c] = static_cast<std::int32_t>(i);
             return;
         }
-        if (cell_count_[c] == capacity_) grow();
-        const std::int32_t k = cell_count_[c]++;
+        if (std::int32_t(blocks_[std::size_t(c) * stride_]) == stride_ - 1) grow();
+        std::uint32_t* block = &blocks_[std::size_t(c) * stride_];
+        const auto k = std::int32_t(block[0]++);
         slot_[i] = k;
-        cell_ids_[std::size_t(c) * capacity_ + k] = i;
+        block[1 + k] = i;
     }
     void remove(std::uint32_t i) {
         const std::int32_t c = cell_of_[i];
@@ -248,8 +240,9 @@ class CellList {
             if (next_[i] >= 0) prev_[next_[i]] = prev_[i];
             return;
         }
-        std::uint32_t* cell = &cell_ids_[std::size_t(c) * capacity_];
-        const std::int32_t last = --cell_count_[c];
+        std::uint32_t* block = &blocks_[std::size_t(c) * stride_];
+        std::uint32_t* cell = block + 1;
+        const auto last = std::int32_t(--block[0]);
         const std::int32_t k = slot_[i];
         if (k != last) {
             cell[k] = cell[last];
@@ -272,9 +265,8 @@ class CellList {
         ar.io(cell_of_);
         ar.io(slots_);
         ar.io(slot_);
-        ar.io(cell_count_);
-        ar.io(cell_ids_);
-        ar.io(capacity_);
+        ar.io(blocks_);
+        ar.io(stride_);
         ar.io(next_);
         ar.io(prev_);
         ar.io(head_);
@@ -294,10 +286,14 @@ class CellList {
     std::vector<std::array<std::int32_t, D>> cc_;  // cell coordinates per particle
     std::vector<std::int32_t> cell_of_;            // cell id per particle
     bool slots_ = false;
-    // dense layout: slot of each particle, count and capacity_ slots per cell
-    std::vector<std::int32_t> slot_, cell_count_;
-    std::vector<std::uint32_t, CacheLineAllocator<std::uint32_t>> cell_ids_;
-    std::int32_t capacity_ = 0;
+    // dense layout: slot of each particle; per cell a block of stride_ words, the count then up
+    // to stride_ - 1 ids
+    std::vector<std::int32_t> slot_;
+    std::vector<std::uint32_t, CacheLineAllocator<std::uint32_t>> blocks_;
+    std::int32_t stride_ = 0;
+    void clear_counts() {
+        for (std::size_t c = 0; c < total_; ++c) blocks_[c * std::size_t(stride_)] = 0;
+    }
     // dilute layout: links per particle, first particle per cell (-1: empty)
     std::vector<std::int32_t> next_, prev_, head_;
     std::vector<std::uint32_t> gather_;  // candidates of one scan

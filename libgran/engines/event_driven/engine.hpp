@@ -249,8 +249,6 @@ class EventDrivenEngine {
 
     void sort_by_cell();
     std::vector<std::uint32_t> id_;
-    std::vector<double> all_best_;  // predict_all(): earliest collision per particle so far
-    std::vector<std::int32_t> all_partner_;
     std::uint64_t events_since_sort_ = 0;
     std::uint64_t sort_every_ = 0;  // events between re-sorts (a few sweeps of N)
 };

@@ -8,10 +8,10 @@
 namespace gran {
 
 // v[k] becomes the old v[order[k]]; an empty array (e.g. no angular velocities) stays empty.
-template <class T>
-void apply_order(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
+template <class T, class A>
+void apply_order(std::vector<T, A>& v, const std::vector<std::uint32_t>& order) {
     if (v.empty()) return;
-    std::vector<T> old(std::move(v));
+    std::vector<T, A> old(std::move(v));
     v.resize(old.size());
     for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
 }

@@ -1,0 +1,125 @@
+// Cell list of the event-driven engine: a scan's candidates are exactly the particles of the
+// neighbouring cells, in both layouts (per-cell blocks, linked lists), after crossings, after a
+// block overflows and grows, and after a re-sort.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "libgran/engines/event_driven/cell_list.hpp"
+
+namespace gran {
+namespace {
+
+constexpr int kCells = 8;  // per axis, cells of width 1 in a periodic cube of side 8
+
+Box<3> periodic_cube() {
+    Box<3> box;
+    box.length = Vec<3>::Constant(kCells);
+    box.periodic.fill(true);
+    return box;
+}
+
+// n positions, uniform in the cube, and `crowd` more inside the cell (2, 3, 4).
+std::vector<Vec<3>> positions(std::size_t n, std::size_t crowd, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, kCells), in_cell(0.0, 1.0);
+    std::vector<Vec<3>> r;
+    for (std::size_t i = 0; i < n; ++i) r.push_back(Vec<3>(u(rng), u(rng), u(rng)));
+    for (std::size_t i = 0; i < crowd; ++i) {
+        r.push_back(Vec<3>(2 + in_cell(rng), 3 + in_cell(rng), 4 + in_cell(rng)));
+    }
+    return r;
+}
+
+// The particles whose cells are within one cell of i's along every (periodic) axis: what a full
+// scan must return, from the list's own cell coordinates.
+std::multiset<std::uint32_t> brute_force_neighbourhood(const CellList<3>& cells, std::size_t n,
+                                                       std::uint32_t i) {
+    std::multiset<std::uint32_t> out;
+    for (std::uint32_t j = 0; j < n; ++j) {
+        bool near = true;
+        for (int a = 0; a < 3; ++a) {
+            const int d = std::abs(cells.coordinate(j, a) - cells.coordinate(i, a));
+            near = near && (d <= 1 || d == kCells - 1);
+        }
+        if (near) out.insert(j);
+    }
+    return out;
+}
+
+std::multiset<std::uint32_t> scanned(CellList<3>& cells, std::uint32_t i) {
+    std::int32_t ids[CellList<3>::kMaxNeighbours];
+    const std::size_t m = cells.gather(ids, cells.neighbours(i, ids));
+    return {cells.candidates(), cells.candidates() + m};
+}
+
+void expect_every_scan_exact(CellList<3>& cells, std::size_t n) {
+    for (std::uint32_t i = 0; i < n; ++i) {
+        ASSERT_EQ(scanned(cells, i), brute_force_neighbourhood(cells, n, i)) << "particle " << i;
+    }
+}
+
+// Random crossings, each checked against the particle's new coordinate.
+void cross_at_random(CellList<3>& cells, std::size_t n, int crossings, unsigned seed) {
+    std::mt19937 rng(seed);
+    for (int k = 0; k < crossings; ++k) {
+        const auto i = std::uint32_t(rng() % n);
+        const int a = int(rng() % 3);
+        const int dir = rng() % 2 ? 1 : -1;
+        const int before = cells.coordinate(i, a);
+        const int wrap = cells.cross(i, a, dir);
+        EXPECT_EQ(cells.coordinate(i, a), ((before + dir) % kCells + kCells) % kCells);
+        EXPECT_EQ(wrap, before + dir >= kCells ? 1 : before + dir < 0 ? -1 : 0);
+    }
+}
+
+void check_layout(std::size_t uniform, std::size_t crowd) {
+    const auto r = positions(uniform, crowd, 7);
+    const std::size_t n = r.size();
+    CellList<3> cells;
+    cells.build(periodic_cube(), 1.0, r);
+    ASSERT_EQ(cells.cells(0), kCells);
+    expect_every_scan_exact(cells, n);
+    cross_at_random(cells, n, 5000, 11);
+    expect_every_scan_exact(cells, n);
+    // A re-sort permutes the particles: particle k of the new order is the old order[k].
+    std::vector<std::uint32_t> order, inv;
+    cells.sort_order(order, inv);
+    std::vector<std::array<int, 3>> before(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        for (int a = 0; a < 3; ++a) before[i][std::size_t(a)] = cells.coordinate(i, a);
+    }
+    cells.reorder(order);
+    for (std::uint32_t k = 0; k < n; ++k) {
+        EXPECT_EQ(inv[order[k]], k);
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_EQ(cells.coordinate(k, a), before[order[k]][std::size_t(a)]);
+        }
+        // Stored in cell order: the cell ids never decrease.
+        if (k > 0) {
+            EXPECT_LE(cells.cell_of(k - 1), cells.cell_of(k));
+        }
+    }
+    expect_every_scan_exact(cells, n);
+}
+
+TEST(CellList, BlocksOfADenseGridGatherExactlyTheNeighbourCellsAcrossCrossingsAndResorts) {
+    check_layout(400, 0);  // 0.78 particles per cell: blocks
+}
+
+TEST(CellList, ACellOverflowingItsBlockGrowsAndKeepsEveryParticle) {
+    // 7 ids fit a 3D block; 40 in one cell make the blocks grow three times (to 63 ids), at
+    // build and while
+    // particles cross into and out of the crowd.
+    check_layout(400, 40);
+}
+
+TEST(CellList, LinkedListsOfADiluteGridGatherExactlyTheNeighbourCells) {
+    check_layout(60, 5);  // 0.12 particles per cell: linked lists
+}
+
+}  // namespace
+}  // namespace gran
