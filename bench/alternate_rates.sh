@@ -1,0 +1,25 @@
+#!/bin/bash
+# Side-by-side rates of several gran_bench binaries (e.g. a worktree at an earlier commit against
+# this build): each round runs every binary once, in turn, with the same arguments, and prints the
+# timed collisions per CPU second of each case. Alternating keeps the ratios meaningful when the
+# shared machine's speed drifts; quote the median of the per-round ratios.
+#
+#   bench/alternate_rates.sh ROUNDS "GRAN_BENCH_ARGS" BINARY...
+#   bench/alternate_rates.sh 3 "--dimension 3 --packing-fraction 0.2 --n 1e6 --equil 3 --quick" \
+#       /work/wt-base/build/gran_bench build/gran_bench
+set -euo pipefail
+if (($# < 3)); then
+    sed -n '2,10p' "$0" >&2
+    exit 2
+fi
+rounds=$1
+read -r -a args <<<"$2"
+shift 2
+for ((r = 1; r <= rounds; ++r)); do
+    line="round $r"
+    for bin in "$@"; do
+        rates=$("$bin" "${args[@]}" 2>&1 | awk '/^[23]d_/ {printf " %s", $5}')
+        line="$line | $bin$rates"
+    done
+    echo "$line"
+done
