@@ -1,7 +1,9 @@
 #!/bin/bash
 # Side-by-side rates of several gran_bench binaries (e.g. a worktree at an earlier commit against
 # this build): each round runs every binary once, in turn, with the same arguments, and prints the
-# timed collisions per CPU second of each case. Alternating keeps the ratios meaningful when the
+# timed collisions per CPU second of each case with gran_bench's check in brackets (a run whose
+# check fails, e.g. a lattice not yet melted after a short --equil, exits non-zero and is still
+# printed: read the check before the rate). Alternating keeps the ratios meaningful when the
 # shared machine's speed drifts; quote the median of the per-round ratios.
 #
 #   bench/alternate_rates.sh ROUNDS "GRAN_BENCH_ARGS" BINARY...
@@ -9,7 +11,7 @@
 #       /work/wt-base/build/gran_bench build/gran_bench
 set -euo pipefail
 if (($# < 3)); then
-    sed -n '2,10p' "$0" >&2
+    sed -n '2,11p' "$0" >&2
     exit 2
 fi
 rounds=$1
@@ -18,7 +20,7 @@ shift 2
 for ((r = 1; r <= rounds; ++r)); do
     line="round $r"
     for bin in "$@"; do
-        rates=$("$bin" "${args[@]}" 2>&1 | awk '/^[23]d_/ {printf " %s", $5}')
+        rates=$("$bin" "${args[@]}" 2>&1 | awk '/^[23]d_/ {printf " %s [%s]", $5, $NF}' || true)
         line="$line | $bin$rates"
     done
     echo "$line"
