@@ -8,11 +8,14 @@
 namespace gran {
 
 template <int D>
-void CellList<D>::build(const Box<D>& box, double width, const std::vector<Vec<D>>& r) {
+void CellList<D>::build(const Box<D>& box, double width, const std::vector<Vec<D>>& r,
+                        CellLayout layout) {
     n_ = r.size();
     size_grid(box, width, n_);
     find_images(box);
-    slots_ = double(n_) >= 0.25 * double(total_);
+    slots_ = layout == CellLayout::automatic
+                 ? double(n_) >= 0.25 * double(total_) && n_ < kMaxBlockParticles
+                 : layout == CellLayout::blocks;
     // Blocks of 16 bytes in 2D (3 disks) and 32 in 3D (7 spheres): 4 equal disks (8 spheres) fit
     // in a cell one diameter wide only in a square (cubic) arrangement with a gap, and smaller
     // species may need more; grow() doubles the blocks then.

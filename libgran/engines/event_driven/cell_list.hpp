@@ -5,15 +5,20 @@
 //  - Geometry: cells at least one largest diameter wide; a periodic axis has >= 4 cells or a single
 //    one (see build()); at most cell_cap(N) cells. Periodic axes with one cell need every image of
 //    a partner within reach tried: image_offsets().
-//  - Contents, two layouts chosen by occupancy in build():
-//    - dense (>= 0.25 particles per cell): one fixed-size block per cell, its count followed by
+//  - Contents, two layouts chosen by occupancy and size in build():
+//    - dense (>= 0.25 particles per cell) and fewer than kMaxBlockParticles particles: one
+//      fixed-size block per cell, its count followed by
 //      the ids (count and ids share a cache line: at N = 10^6 a separate count array was one more
 //      line from memory per cell row of a scan). A scan gathers the ids of all neighbouring cells
 //      without branches (whole blocks are copied, the write position advances by the count), so
 //      the unpredictable "how many particles in this cell" branch is not paid per cell (+18% at
 //      phi 0.2-0.3 in 3D);
-//    - dilute: doubly linked lists (a few bytes per mostly empty cell; slots cost -30 to -45% at
-//      N = 1e5, phi = 0.1, through cache misses).
+//    - dilute, or large: doubly linked lists (a few bytes per mostly empty cell; slots cost -30
+//      to -45% at N = 1e5, phi = 0.1, through cache misses). From ~10^5 particles on, the state
+//      outgrows the last-level cache and the blocks' empty slots cost more misses than the
+//      branches they save: on this machine class (32 MiB L3) linked lists were 1.05-1.2x faster
+//      and 10-64 bytes per particle smaller at N = 10^5 to 10^6 (2D phi 0.5, 3D phi 0.2-0.4),
+//      while blocks were faster at 7e4 (mostly) and 5e4 (1.2x; docs/performance.md).
 //  - Neighbour cells computed from cell coordinates (a per-cell table falls out of cache at 1e5).
 // The functions the engine's event loop calls (cross, neighbours, gather) are defined in this
 // header so that they inline into it.
@@ -35,15 +40,25 @@ namespace gran {
 // 3D, 16 in 2D) then never straddles two cache lines, whatever the allocation history (in one
 // layout the gather's memcpy of straddling slots took 1.3-1.7x longer: perf, gran_bench_features
 // at phi 0.3 in 3D).
+// Which layout build() uses: chosen from occupancy and size (automatic), or forced (benchmarks
+// that time one layout against the other).
+enum class CellLayout { automatic, blocks, lists };
+
 template <int D>
 class CellList {
   public:
     static constexpr int kMaxNeighbours = 27;  // room neighbours() needs (3^D written)
+    // Systems of this many particles or more use linked lists at any occupancy (the layouts
+    // above).
+    static constexpr std::size_t kMaxBlockParticles = 100000;
 
     // Grid for cells at least `width` wide in `box`, filled with the particles at r (inside the
     // box, or within round-off of it: coordinates are clamped).
-    void build(const Box<D>& box, double width, const std::vector<Vec<D>>& r);
+    void build(const Box<D>& box, double width, const std::vector<Vec<D>>& r,
+               CellLayout layout = CellLayout::automatic);
 
+    // The layout build() chose: per-cell blocks (true) or linked lists.
+    bool blocks() const { return slots_; }
     std::int32_t cells(int a) const { return ncell_[a]; }
     double width(int a) const { return width_[a]; }
     std::int32_t coordinate(std::uint32_t i, int a) const { return cc_[i][a]; }

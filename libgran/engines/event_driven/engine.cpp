@@ -49,7 +49,7 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     events_.reset(n);
     now_ = 0;
     for (std::size_t i = 0; i < n; ++i) now_ = std::max(now_, p_.t[i]);
-    cells_.build(box_, largest_diameter(), p_.r);
+    cells_.build(box_, largest_diameter(), p_.r, settings_.cell_layout);
     const std::size_t box_partner = contacts_.wall_named("box");
     for (int a = 0; a < D; ++a) {
         if (!box_.periodic[std::size_t(a)] && box_partner == contacts_.walls.size()) {

@@ -39,9 +39,10 @@
 namespace gran {
 
 struct EngineSettings {
-    bool tc_guard = true;                    // TC model on by default
-    double tc = 1e-6;                        // [time]
-    std::array<double, 3> gravity{0, 0, 0};  // uniform acceleration [length/time^2]
+    bool tc_guard = true;                            // TC model on by default
+    double tc = 1e-6;                                // [time]
+    std::array<double, 3> gravity{0, 0, 0};          // uniform acceleration [length/time^2]
+    CellLayout cell_layout = CellLayout::automatic;  // forced only by benchmarks (gran_bench)
 };
 
 struct EngineCounters {

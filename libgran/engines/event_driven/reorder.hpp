@@ -8,12 +8,27 @@
 namespace gran {
 
 // v[k] becomes the old v[order[k]]; an empty array (e.g. no angular velocities) stays empty.
+// In place, one cycle of the permutation at a time: a copy of the array would raise the peak
+// memory of a re-sort by the largest array's size (the scheduler's 32 bytes per particle), and
+// the peak is what a run at N = 10^6 must fit in (docs/performance.md). One bit per particle
+// marks the positions already written.
 template <class T, class A>
 void apply_order(std::vector<T, A>& v, const std::vector<std::uint32_t>& order) {
     if (v.empty()) return;
-    std::vector<T, A> old(std::move(v));
-    v.resize(old.size());
-    for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
+    std::vector<bool> done(order.size(), false);
+    for (std::size_t start = 0; start < order.size(); ++start) {
+        if (done[start]) continue;
+        // The cycle start <- order[start] <- order[order[start]] ... <- start.
+        T first = std::move(v[start]);
+        std::size_t k = start;
+        while (order[k] != start) {
+            v[k] = std::move(v[order[k]]);
+            done[k] = true;
+            k = order[k];
+        }
+        v[k] = std::move(first);
+        done[k] = true;
+    }
 }
 
 }  // namespace gran

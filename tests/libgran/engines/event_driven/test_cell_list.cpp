@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 #include <vector>
@@ -76,12 +77,13 @@ void cross_at_random(CellList<3>& cells, std::size_t n, int crossings, unsigned 
     }
 }
 
-void check_layout(std::size_t uniform, std::size_t crowd) {
+void check_layout(std::size_t uniform, std::size_t crowd, bool blocks) {
     const auto r = positions(uniform, crowd, 7);
     const std::size_t n = r.size();
     CellList<3> cells;
     cells.build(periodic_cube(), 1.0, r);
     ASSERT_EQ(cells.cells(0), kCells);
+    ASSERT_EQ(cells.blocks(), blocks);
     expect_every_scan_exact(cells, n);
     cross_at_random(cells, n, 5000, 11);
     expect_every_scan_exact(cells, n);
@@ -107,18 +109,58 @@ void check_layout(std::size_t uniform, std::size_t crowd) {
 }
 
 TEST(CellList, BlocksOfADenseGridGatherExactlyTheNeighbourCellsAcrossCrossingsAndResorts) {
-    check_layout(400, 0);  // 0.78 particles per cell: blocks
+    check_layout(400, 0, true);  // 0.78 particles per cell: blocks
 }
 
 TEST(CellList, ACellOverflowingItsBlockGrowsAndKeepsEveryParticle) {
     // 7 ids fit a 3D block; 40 in one cell make the blocks grow three times (to 63 ids), at
     // build and while
     // particles cross into and out of the crowd.
-    check_layout(400, 40);
+    check_layout(400, 40, true);
 }
 
 TEST(CellList, LinkedListsOfADiluteGridGatherExactlyTheNeighbourCells) {
-    check_layout(60, 5);  // 0.12 particles per cell: linked lists
+    check_layout(60, 5, false);  // 0.12 particles per cell: linked lists
+}
+
+// n particles on a simple cubic lattice at 0.8 per cell (cells of width 1).
+CellList<3> lattice_cells(std::size_t n) {
+    const double side = std::cbrt(double(n) / 0.8);
+    const auto per_row = std::size_t(std::ceil(std::cbrt(double(n))));
+    const double spacing = side / double(per_row);
+    std::vector<Vec<3>> r;
+    for (std::size_t k = 0; r.size() < n; ++k) {
+        r.push_back(spacing * Vec<3>(double(k % per_row) + 0.5, double(k / per_row % per_row) + 0.5,
+                                     double(k / per_row / per_row) + 0.5));
+    }
+    Box<3> box;
+    box.length = Vec<3>::Constant(side);
+    box.periodic.fill(true);
+    CellList<3> cells;
+    cells.build(box, 1.0, r);
+    return cells;
+}
+
+TEST(CellList, ADenseGridUsesBlocksUpToTheSizeWhereLinkedListsBecomeFaster) {
+    // Both grids hold ~0.8 particles per cell; beyond kMaxBlockParticles the state outgrows the
+    // last-level cache and linked lists are faster and smaller (cell_list.hpp).
+    EXPECT_TRUE(lattice_cells(CellList<3>::kMaxBlockParticles - 1000).blocks());
+    CellList<3> large = lattice_cells(CellList<3>::kMaxBlockParticles + 1000);
+    EXPECT_FALSE(large.blocks());
+    // The large grid's scans are still exact (a sample of particles).
+    const std::size_t n = CellList<3>::kMaxBlockParticles + 1000;
+    for (std::uint32_t i = 0; i < n; i += 9973) {
+        std::multiset<std::uint32_t> expected;
+        for (std::uint32_t j = 0; j < n; ++j) {
+            bool near = true;
+            for (int a = 0; a < 3; ++a) {
+                const int d = std::abs(large.coordinate(j, a) - large.coordinate(i, a));
+                near = near && (d <= 1 || d == large.cells(a) - 1);
+            }
+            if (near) expected.insert(j);
+        }
+        EXPECT_EQ(scanned(large, i), expected) << "particle " << i;
+    }
 }
 
 }  // namespace
