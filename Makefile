@@ -13,7 +13,7 @@ DEB_PACKAGES := cmake g++ ninja-build pkg-config libeigen3-dev libboost-dev libh
 GRAN_WERROR ?= $(if $(CI),ON,OFF)
 CMAKE_FLAGS ?=
 
-.PHONY: fuzz deps configure build demo test docs validate bench format sanitize clean reproduce-barrat-trizac-2002 \
+.PHONY: fuzz deps configure build demo test docs validate bench bench-peers format sanitize clean reproduce-barrat-trizac-2002 \
   reproduce-mcnamara-falcon-2005 reproduce-bhateja-2016 tradeoff
 
 deps:
@@ -57,6 +57,15 @@ bench: build
 	$(BUILD_DIR)/gran_bench --csv results/bench.csv
 	$(BUILD_DIR)/gran_bench_dem --csv results/bench.csv | tee results/bench_dem.txt
 	$(BUILD_DIR)/gran_bench_features --csv results/feature_cost.csv | tee results/feature_cost.txt
+
+# gran against its peers side by side, one core each (bench/peers.sh; about 40 min): Smallenburg's
+# EDMD when EDMD=/path/to/a clone of github.com/FSmallenburg/EDMD is given (built from that path,
+# never copied here), LAMMPS and LIGGGHTS from Debian (installed when absent) on the vibrated and
+# the settled bed. ROUNDS, EDMD_PHIS, EDMD_NS, DEM_SIZES, SETTLED_SIZES pass through.
+PEER_PACKAGES := lammps liggghts
+bench-peers: build
+	@$(MAKE) --no-print-directory deps DEB_PACKAGES="$(PEER_PACKAGES)"
+	EDMD=$(EDMD) bench/peers.sh
 
 # Barrat & Trizac 2002: Tables I-II and Figs. 1-4, 6-9, 13-17 (36 runs on all cores, about 8 min
 # on 2 cores; completed runs are reused). Writes results/barrat-trizac-2002/{figN,tables}.png,

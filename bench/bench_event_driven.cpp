@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "bench/bench_clock.hpp"
+#include "bench/bench_memory.hpp"
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/interactions.hpp"
 #include "libgran/scene/placement.hpp"
@@ -61,6 +62,8 @@ struct Options {
     std::uint64_t timed_min = 2'000'000;
     double timed_per_particle = 20;  // timed collisions >= this many times N
     bool shuffle = false;            // random particle order (as random placement gives)
+    CellLayout cell_layout =
+        CellLayout::automatic;  // --cell-layout: the engine's choice, or forced
 };
 
 struct Result {
@@ -70,7 +73,9 @@ struct Result {
     EngineCounters delta;  // counters of the timed part only
     double energy_rel_err = 0;
     double momentum_err = 0;
-    double melted_fraction = 0;  // particles whose velocity changed during equilibration
+    double melted_fraction = 0;     // particles whose velocity changed during equilibration
+    double omega_over_enskog = 0;   // measured collision frequency / enskog_collision_frequency
+    double bytes_per_particle = 0;  // peak resident memory of the case / N (bench_memory.hpp)
     bool ok = true;
     double rate_cpu() const { return double(collisions) / cpu_s; }
     double rate_wall() const { return double(collisions) / wall_s; }
@@ -132,6 +137,20 @@ Box<D> periodic_box(const Case& c) {
     return box;
 }
 
+// Collisions per particle per unit time of an equilibrium hard-sphere (disk) fluid, exact given
+// the contact value g(sigma): omega = 4 n sigma^2 g sqrt(pi T / m) in 3D, 2 n sigma g sqrt(pi T /
+// m) in 2D, with the Carnahan-Starling g = (1 - phi/2) / (1 - phi)^3 and Henderson's g = (1 - 7 phi
+// / 16) / (1 - phi)^2 (both within ~1% of simulation up to freezing). A lattice that stayed
+// crystalline, or another fluid, shows as a ratio far from 1.
+template <int D>
+double enskog_collision_frequency(double phi, double temperature) {
+    const double pi = std::numbers::pi;
+    const double n = D == 3 ? 6 * phi / pi : 4 * phi / pi;  // sigma = 1
+    const double g =
+        D == 3 ? (1 - phi / 2) / std::pow(1 - phi, 3) : (1 - 7 * phi / 16) / std::pow(1 - phi, 2);
+    return (D == 3 ? 4 : 2) * n * g * std::sqrt(pi * temperature);  // m = 1
+}
+
 // Simple lattice, Maxwellian velocities at T = 1 and, with --shuffle, random labels.
 template <int D>
 Particles<D> initial_particles(const Box<D>& box, const SpeciesTable& table, const Options& opt) {
@@ -158,12 +177,15 @@ Particles<D> initial_particles(const Box<D>& box, const SpeciesTable& table, con
     return p;
 }
 
-// The fraction of particles whose velocity is no longer v0.
+// The fraction of particles whose velocity is no longer the initial one (x components kept as
+// floats, 4 bytes per particle of the bench's own). The engine stores particles in cell order:
+// the particle at storage index k has placement index ids[k].
 template <int D>
-double changed_fraction(const Particles<D>& p, const std::vector<Vec<D>>& v0) {
+double changed_fraction(const Particles<D>& p, const std::vector<std::uint32_t>& ids,
+                        const std::vector<float>& vx0) {
     std::size_t changed = 0;
-    for (std::size_t i = 0; i < v0.size(); ++i) changed += p.v[i] != v0[i] ? 1 : 0;
-    return double(changed) / double(v0.size());
+    for (std::size_t k = 0; k < vx0.size(); ++k) changed += float(p.v[k][0]) != vx0[ids[k]] ? 1 : 0;
+    return double(changed) / double(vx0.size());
 }
 
 // Sanity: elastic dynamics conserve energy and momentum; the lattice must have melted. Warns and
@@ -201,14 +223,21 @@ template <int D>
 Result run_case(const Case& c, const Options& opt) {
     Result res;
     res.c = c;
+    // Memory: the case's peak resident set over its start (the engine's arrays, the set-up's
+    // transients and the bench's 4 bytes per particle of initial velocities).
+    gran::bench::reset_peak_resident();
+    const std::uint64_t rss0 = gran::bench::resident_bytes();
     const double t_setup = wall_seconds();
     const SpeciesTable table = monodisperse(c.n);
     const Box<D> box = periodic_box<D>(c);
     Particles<D> p = initial_particles<D>(box, table, opt);
     const double e0 = kinetic_energy<D>(p);
     const Vec<D> p0 = total_momentum<D>(p);
-    const std::vector<Vec<D>> v0 = p.v;
-    EventDrivenEngine<D> engine(box, table, elastic(table, D), std::move(p), EngineSettings{});
+    std::vector<float> vx0(c.n);
+    for (std::size_t i = 0; i < c.n; ++i) vx0[i] = float(p.v[i][0]);
+    EngineSettings settings;
+    settings.cell_layout = opt.cell_layout;
+    EventDrivenEngine<D> engine(box, table, elastic(table, D), std::move(p), settings);
     res.setup_s = wall_seconds() - t_setup;
 
     // Equilibration: equil_per_particle collisions per particle = equil_per_particle * N / 2.
@@ -216,17 +245,21 @@ Result run_case(const Case& c, const Options& opt) {
     const auto n_equil = static_cast<std::uint64_t>(opt.equil_per_particle * double(c.n) / 2);
     engine.advance(kInf, n_equil);
     res.equil_s = wall_seconds() - t_equil;
-    res.melted_fraction = changed_fraction<D>(engine.particles(), v0);
+    res.melted_fraction = changed_fraction<D>(engine.particles(), engine.ids(), vx0);
 
     // Timed part.
     const std::uint64_t n_timed = std::max<std::uint64_t>(
         opt.timed_min, static_cast<std::uint64_t>(opt.timed_per_particle * double(c.n)));
     const EngineCounters before = engine.counters();
+    const double t0 = engine.now();
     const double w0 = wall_seconds();
     const double c0 = cpu_seconds();
     engine.advance(kInf, before.collisions + n_timed);
     const double c1 = cpu_seconds();
     const double w1 = wall_seconds();
+    const double t1 = engine.now();
+    const std::uint64_t peak = gran::bench::peak_resident_bytes();
+    res.bytes_per_particle = peak > rss0 ? double(peak - rss0) / double(c.n) : 0;
     res.delta = counters_minus(engine.counters(), before);
     res.collisions = res.delta.collisions;
     res.cpu_s = c1 - c0;
@@ -236,6 +269,9 @@ Result run_case(const Case& c, const Options& opt) {
     const double e1 = kinetic_energy<D>(engine.particles());
     res.energy_rel_err = std::abs(e1 - e0) / e0;
     res.momentum_err = (total_momentum<D>(engine.particles()) - p0).norm() / std::sqrt(2 * e0);
+    const double temperature = 2 * e0 / (D * double(c.n));  // m = 1
+    res.omega_over_enskog = 2 * double(res.collisions) / (double(c.n) * (t1 - t0)) /
+                            enskog_collision_frequency<D>(c.phi, temperature);
     check_sanity(res, n_timed);
     return res;
 }
@@ -258,7 +294,7 @@ void usage(std::FILE* f) {
     std::fprintf(
         f,
         "usage: gran_bench [--quick] [--cases F1,F2,...] [--n N1,N2,...] [--csv PATH] "
-        "[--equil C] [--shuffle] [--seed S]\n"
+        "[--equil C] [--shuffle] [--seed S] [--cell-layout L]\n"
         "  Collisions per CPU second of the event-driven engine, elastic monodisperse hard\n"
         "  disks (phi 0.1, 0.5) and spheres (phi 0.1, 0.2, 0.3), N = 1e4 and 1e5, periodic.\n"
         "  --quick    short smoke run (fewer collisions)\n"
@@ -267,10 +303,15 @@ void usage(std::FILE* f) {
         "  --equil    equilibration collisions per particle (default 20, --quick 10)\n"
         "  --shuffle  relabel particles randomly (no memory locality, as random placement)\n"
         "  --seed     placement and velocity seed (default 12345)\n"
+        "  --cell-layout auto|blocks|lists: the engine's choice (default), or the cells' contents\n"
+        "             forced to per-cell blocks or linked lists (cell_list.hpp)\n"
         "  --dimension D1,D2 and --packing-fraction P1,P2,...: run these geometries instead of\n"
         "             the default five (every pair; 2D up to 0.8, 3D up to 0.55; one flag alone\n"
         "             filters the default five)\n"
         "  --csv      write case,engine,dimension,N,packing_fraction,rate,unit to PATH\n"
+        "  Columns besides the rates: events, cell crossings and stale events per collision;\n"
+        "  B/part, the case's peak resident memory over its start per particle; w/Enskog, the\n"
+        "  collisions per particle and time over the Enskog value (~1 in the fluid).\n"
         "  Exits 1 if energy/momentum conservation or lattice melting fails in any case.\n");
 }
 
@@ -327,6 +368,18 @@ std::optional<Options> parse(int argc, char** argv) {
                 if (!v) return std::nullopt;
                 equil = std::stod(*v);
                 if (!(*equil >= 0)) throw std::invalid_argument(*v);
+            } else if (a == "--cell-layout") {
+                auto v = value();
+                if (!v) return std::nullopt;
+                if (*v == "auto") {
+                    opt.cell_layout = CellLayout::automatic;
+                } else if (*v == "blocks") {
+                    opt.cell_layout = CellLayout::blocks;
+                } else if (*v == "lists") {
+                    opt.cell_layout = CellLayout::lists;
+                } else {
+                    throw std::invalid_argument(*v);
+                }
             } else if (a == "--seed") {
                 auto v = value();
                 if (!v) return std::nullopt;
@@ -405,9 +458,10 @@ void print_header(const Options& opt) {
                 opt.equil_per_particle, static_cast<unsigned long long>(opt.timed_min),
                 opt.timed_per_particle);
     const std::string header = fmt::format(
-        "{:<20} {:>3} {:>7} {:>5} {:>12} {:>12} {:>12} {:>8} {:>8} {:>8} {:>7} {:>9} {:>9}", "case",
-        "dim", "N", "phi", "coll/s(cpu)", "coll/s(wall)", "events/s", "ev/coll", "cell/col",
-        "stale/c", "cpu_s", "dE/E", "check");
+        "{:<20} {:>3} {:>7} {:>5} {:>12} {:>12} {:>12} {:>8} {:>8} {:>8} {:>7} {:>9} {:>7} {:>9} "
+        "{:>9}",
+        "case", "dim", "N", "phi", "coll/s(cpu)", "coll/s(wall)", "events/s", "ev/coll", "cell/col",
+        "stale/c", "cpu_s", "dE/E", "B/part", "w/Enskog", "check");
     std::printf("%s\n", header.c_str());
     std::fflush(stdout);
 }
@@ -417,11 +471,11 @@ void print_row(const Result& r) {
     std::printf(
         "%s\n",
         fmt::format("{:<20} {:>3} {:>7} {:>5} {:>12.4g} {:>12.4g} {:>12.4g} {:>8.3f} "
-                    "{:>8.3f} {:>8.3f} {:>7.2f} {:>9.1e} {:>9}",
+                    "{:>8.3f} {:>8.3f} {:>7.2f} {:>9.1e} {:>7.0f} {:>9.4f} {:>9}",
                     c.name(), c.dim, c.n, c.phi, r.rate_cpu(), r.rate_wall(), r.events_per_s(),
                     r.per_collision(r.delta.events), r.per_collision(r.delta.cell_crossings),
                     r.per_collision(r.delta.stale_events), r.cpu_s, r.energy_rel_err,
-                    r.ok ? "ok" : "FAILED")
+                    r.bytes_per_particle, r.omega_over_enskog, r.ok ? "ok" : "FAILED")
             .c_str());
     std::fflush(stdout);
 }

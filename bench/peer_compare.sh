@@ -1,6 +1,8 @@
 # Shared by bench/lammps/compare.sh and bench/liggghts/compare.sh (sourced, not run): timing gran's
 # DEM benchmark, recording one gran-versus-peer pair of timings, and the per-size medians.
 # The caller sets: gran (path of gran_bench_dem), warmup (periods), out (output directory).
+# W (environment, default 9): the floor's (A omega)^2 / (g d); 0 is a bed settled on a static floor.
+W=${W:-9}
 
 median() { sort -g | awk '{a[NR] = $1} END {if (NR % 2) print a[(NR + 1) / 2]; else print (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
 
@@ -9,7 +11,7 @@ psteps_for() { if (($1 < 10000)); then echo "${PSTEPS_SMALL:-2e7}"; else echo "$
 
 # run_gran N PSTEPS FILE: runs gran_bench_dem, prints "cpu wall" particle-steps per second
 run_gran() {
-    "$gran" --sizes "$1" --particle-steps "$2" --warmup-periods "$warmup" >"$3" 2>&1
+    "$gran" --sizes "$1" --particle-steps "$2" --warmup-periods "$warmup" --W "$W" >"$3" 2>&1
     awk '$1 == '"$1"' {print $4, $5}' "$3"
 }
 

@@ -4,7 +4,8 @@
 #   bench/lammps/compare.sh [RUNS] [SIZES]        e.g. bench/lammps/compare.sh 5 100,1600,10000
 #
 # Environment: GRAN_BENCH_DEM (default build/gran_bench_dem), LMP (default lmp),
-# WARMUP_PERIODS (default 2), PSTEPS_SMALL (default 2e7, N < 10^4), PSTEPS_LARGE (default 5e7),
+# WARMUP_PERIODS (default 2), W (default 9; 0: the bed settled on a static floor),
+# PSTEPS_SMALL (default 2e7, N < 10^4), PSTEPS_LARGE (default 5e7),
 # OUT (default a new directory under /tmp: every run's full output is kept there).
 #
 # Runs gran and LAMMPS alternately, RUNS times each per size, serially (one process each,
@@ -32,7 +33,7 @@ export OMP_NUM_THREADS=1
 source "$here/../peer_compare.sh"
 
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
-echo "# gran: $gran; LAMMPS: $($lmp -h | sed -n 2p | xargs); outputs in $out"
+echo "# gran: $gran; LAMMPS: $($lmp -h | sed -n 2p | xargs); W = $W; outputs in $out"
 printf '%6s %3s %14s %14s %14s %14s %9s %9s\n' N run gran_cpu gran_wall lammps_cpu lammps_wall \
     ratio_cpu ratio_wall
 for n in ${sizes//,/ }; do
@@ -43,7 +44,7 @@ for n in ${sizes//,/ }; do
         l="$out/lammps_${n}_$r.txt"
         read -r gc gw < <(run_gran "$n" "$psteps" "$g")
         "$lmp" -in "$here/vibrated_bed.in" -log none -var N "$n" -var psteps "$psteps" \
-            -var warmup_periods "$warmup" >"$l" 2>&1
+            -var warmup_periods "$warmup" -var W "$W" >"$l" 2>&1
         # the first "Loop time" after the warm-up summary is the timed run's
         read -r lc lw < <(awk '
             /^vibrated_bed: after a warm-up/ {timed = 1; next}

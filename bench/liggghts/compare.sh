@@ -4,7 +4,8 @@
 #   bench/liggghts/compare.sh [RUNS] [SIZES]        e.g. bench/liggghts/compare.sh 5 100,1600,10000
 #
 # Environment: GRAN_BENCH_DEM (default build/gran_bench_dem), LIGGGHTS (default liggghts),
-# WARMUP_PERIODS (default 2), PSTEPS_SMALL (default 2e7, N < 10^4), PSTEPS_LARGE (default 5e7),
+# WARMUP_PERIODS (default 2), W (default 9; 0: the bed settled on a static floor),
+# PSTEPS_SMALL (default 2e7, N < 10^4), PSTEPS_LARGE (default 5e7),
 # OUT (default a new directory under /tmp: every run's full output is kept there).
 #
 # Runs gran and LIGGGHTS alternately, RUNS times each per size, serially (one process each,
@@ -35,7 +36,7 @@ export OMP_NUM_THREADS=1
 source "$here/../peer_compare.sh"
 
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); load: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "# gran: $gran; LIGGGHTS: $(cd "$out" && "$lig" -h -log none | sed -n 1p | xargs); outputs in $out"
+echo "# gran: $gran; LIGGGHTS: $(cd "$out" && "$lig" -h -log none | sed -n 1p | xargs); W = $W; outputs in $out"
 printf '%6s %3s %14s %14s %14s %14s %9s %9s\n' N run gran_cpu gran_wall liggghts_cpu liggghts_wall \
     ratio_cpu ratio_wall
 for n in ${sizes//,/ }; do
@@ -49,7 +50,7 @@ for n in ${sizes//,/ }; do
         read -r gc gw < <(run_gran "$n" "$psteps" "$g")
         # from $out, so that nothing (log.liggghts and the like) lands in the caller's directory
         (cd "$out" && "$lig" -in "$here/vibrated_bed.in" -log none -var dir "$here" -var N "$n" \
-            -var psteps "$psteps" -var warmup_periods "$warmup" -var cpufile "$c" >"$l" 2>&1)
+            -var psteps "$psteps" -var warmup_periods "$warmup" -var W "$W" -var cpufile "$c" >"$l" 2>&1)
         # CPU share of the timed run from the marks "before CPU WALL" and "after CPU WALL"
         share=$(awk '$1 == "before" {c0 = $2; w0 = $3} $1 == "after" {c1 = $2; w1 = $3}
                      END {printf "%.6f\n", (c1 - c0) / (w1 - w0)}' "$c")
