@@ -76,7 +76,9 @@ build_edmd() {
         'usethermostat = 0' 'clock()'; do
         grep -q "$key" "$src" || { echo "bench/edmd/compare.sh: could not set '$key' in EDMD's source" >&2; exit 1; }
     done
-    (cd "$out" && gcc $cflags "$src" -o "$bin" -lm) >&2
+    local flags
+    read -r -a flags <<<"$cflags"
+    (cd "$out" && gcc "${flags[@]}" "$src" -o "$bin" -lm) >&2
     echo "$bin"
 }
 
@@ -84,7 +86,8 @@ build_edmd() {
 # the last); omega/Enskog as gran_bench's w/Enskog column (collisions per particle per unit time
 # over the Carnahan-Starling Enskog value, kT = 1): far from 1 means another state (a crystal)
 run_edmd() {
-    local log="$out/$(basename "$1")_$4.txt"
+    local log
+    log="$out/$(basename "$1")_$4.txt"
     read -r ta w tmax < <(times "$2" "$3")
     (cd "$out" && "$1") >"$log"
     awk -v ta="$ta" -v w="$w" -v phi="$2" -v n_part="$3" '
