@@ -58,7 +58,7 @@ bench: build
 	$(BUILD_DIR)/gran_bench_dem --csv results/bench.csv | tee results/bench_dem.txt
 	$(BUILD_DIR)/gran_bench_features --csv results/feature_cost.csv | tee results/feature_cost.txt
 
-# gran against its peers side by side, one core each (bench/peers.sh; about 40 min): Smallenburg's
+# gran against its peers side by side, one core each (bench/peers.sh; about 15 min): Smallenburg's
 # EDMD when EDMD=/path/to/a clone of github.com/FSmallenburg/EDMD is given (built from that path,
 # never copied here), LAMMPS and LIGGGHTS from Debian (installed when absent) on the vibrated and
 # the settled bed. ROUNDS, EDMD_PHIS, EDMD_NS, DEM_SIZES, SETTLED_SIZES pass through.

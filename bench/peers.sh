@@ -11,7 +11,7 @@
 # Environment: EDMD (path), ROUNDS (3), EDMD_PHIS (0.1,0.2,0.3,0.4,0.5), EDMD_NS (10976,108000),
 # DEM_SIZES (100,1600,10000), SETTLED_SIZES (1600), SETTLED_WARMUP (10 periods of the W = 9 drive:
 # long enough for the poured grains to come to rest), OUT (a new directory under /tmp).
-# Takes about 40 min with the defaults on this machine class; every run's output stays in $OUT.
+# Takes about 15 min with the defaults on this machine class; every run's output stays in $OUT.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 rounds=${ROUNDS:-3}
