@@ -65,6 +65,7 @@ struct Options {
     bool shuffle = false;            // random particle order (as random placement gives)
     CellLayout cell_layout =
         CellLayout::automatic;  // --cell-layout: the engine's choice, or forced
+    double skin = -1;           // --skin: neighbour shells' skin (negative: the engine's choice)
 };
 
 struct Result {
@@ -76,6 +77,7 @@ struct Result {
     double momentum_err = 0;
     double melted_fraction = 0;     // particles whose velocity changed during equilibration
     double omega_over_enskog = 0;   // measured collision frequency / enskog_collision_frequency
+    double skin = 0;                // neighbour shells' skin the engine used (0: cells)
     double bytes_per_particle = 0;  // peak resident memory of the case / N (bench_memory.hpp)
     bool ok = true;
     double rate_cpu() const { return double(collisions) / cpu_s; }
@@ -126,6 +128,8 @@ EngineCounters counters_minus(const EngineCounters& a, const EngineCounters& b) 
     d.tc_collisions = a.tc_collisions - b.tc_collisions;
     d.overlap_collisions = a.overlap_collisions - b.overlap_collisions;
     d.full_reschedules = a.full_reschedules - b.full_reschedules;
+    d.shell_exits = a.shell_exits - b.shell_exits;
+    d.wraps = a.wraps - b.wraps;
     return d;
 }
 
@@ -224,8 +228,10 @@ Result run_case(const Case& c, const Options& opt) {
     for (std::size_t i = 0; i < c.n; ++i) vx0[i] = float(p.v[i][0]);
     EngineSettings settings;
     settings.cell_layout = opt.cell_layout;
+    settings.neighbour_skin = opt.skin;
     EventDrivenEngine<D> engine(box, table, elastic(table, D), std::move(p), settings);
     res.setup_s = wall_seconds() - t_setup;
+    res.skin = engine.neighbour_skin();
 
     // Equilibration: equil_per_particle collisions per particle = equil_per_particle * N / 2.
     const double t_equil = wall_seconds();
@@ -286,7 +292,7 @@ void usage(std::FILE* f) {
     std::fprintf(
         f,
         "usage: gran_bench [--quick] [--cases F1,F2,...] [--n N1,N2,...] [--csv PATH] "
-        "[--equil C] [--shuffle] [--seed S] [--cell-layout L]\n"
+        "[--equil C] [--shuffle] [--seed S] [--cell-layout L] [--skin S]\n"
         "  Collisions per CPU second of the event-driven engine, elastic monodisperse hard\n"
         "  disks (phi 0.1, 0.5) and spheres (phi 0.1, 0.2, 0.3), N = 1e4 and 1e5, periodic.\n"
         "  --quick    short smoke run (fewer collisions)\n"
@@ -297,11 +303,14 @@ void usage(std::FILE* f) {
         "  --seed     placement and velocity seed (default 12345)\n"
         "  --cell-layout auto|blocks|lists: the engine's choice (default), or the cells' contents\n"
         "             forced to per-cell blocks or linked lists (cell_list.hpp)\n"
+        "  --skin S   neighbour shells of skin S largest diameters (0: cells only); default: the\n"
+        "             engine's choice from the packing fraction (neighbour_shells.hpp)\n"
         "  --dimension D1,D2 and --packing-fraction P1,P2,...: run these geometries instead of\n"
         "             the default five (every pair; 2D up to 0.8, 3D up to 0.55; one flag alone\n"
         "             filters the default five)\n"
         "  --csv      write case,engine,dimension,N,packing_fraction,rate,unit to PATH\n"
-        "  Columns besides the rates: events, cell crossings and stale events per collision;\n"
+        "  Columns besides the rates: events, cell crossings, shell exits and stale events per\n"
+        "  collision; skin, the neighbour shells' skin the engine used (0: cells);\n"
         "  B/part, the case's peak resident memory over its start per particle; w/Enskog, the\n"
         "  collisions per particle and time over the Enskog value (~1 in the fluid).\n"
         "  Exits 1 if energy/momentum conservation or lattice melting fails in any case.\n");
@@ -372,6 +381,10 @@ std::optional<Options> parse(int argc, char** argv) {
                 } else {
                     throw std::invalid_argument(*v);
                 }
+            } else if (a == "--skin") {
+                auto v = value();
+                if (!v) return std::nullopt;
+                opt.skin = std::stod(*v);
             } else if (a == "--seed") {
                 auto v = value();
                 if (!v) return std::nullopt;
@@ -451,9 +464,9 @@ void print_header(const Options& opt) {
                 opt.timed_per_particle);
     const std::string header = fmt::format(
         "{:<20} {:>3} {:>7} {:>5} {:>12} {:>12} {:>12} {:>8} {:>8} {:>8} {:>7} {:>9} {:>7} {:>9} "
-        "{:>9}",
+        "{:>9} {:>5} {:>9}",
         "case", "dim", "N", "phi", "coll/s(cpu)", "coll/s(wall)", "events/s", "ev/coll", "cell/col",
-        "stale/c", "cpu_s", "dE/E", "B/part", "w/Enskog", "check");
+        "stale/c", "cpu_s", "dE/E", "B/part", "w/Enskog", "shell/c", "skin", "check");
     std::printf("%s\n", header.c_str());
     std::fflush(stdout);
 }
@@ -463,11 +476,12 @@ void print_row(const Result& r) {
     std::printf(
         "%s\n",
         fmt::format("{:<20} {:>3} {:>7} {:>5} {:>12.4g} {:>12.4g} {:>12.4g} {:>8.3f} "
-                    "{:>8.3f} {:>8.3f} {:>7.2f} {:>9.1e} {:>7.0f} {:>9.4f} {:>9}",
+                    "{:>8.3f} {:>8.3f} {:>7.2f} {:>9.1e} {:>7.0f} {:>9.4f} {:>9.3f} {:>5.2f} {:>9}",
                     c.name(), c.dim, c.n, c.phi, r.rate_cpu(), r.rate_wall(), r.events_per_s(),
                     r.per_collision(r.delta.events), r.per_collision(r.delta.cell_crossings),
                     r.per_collision(r.delta.stale_events), r.cpu_s, r.energy_rel_err,
-                    r.bytes_per_particle, r.omega_over_enskog, r.ok ? "ok" : "FAILED")
+                    r.bytes_per_particle, r.omega_over_enskog, r.per_collision(r.delta.shell_exits),
+                    r.skin, r.ok ? "ok" : "FAILED")
             .c_str());
     std::fflush(stdout);
 }

@@ -105,7 +105,8 @@ run_edmd() {
 run_gran() {
     local log="$out/gran_phi$1_N$2_$3.txt"
     "$gran" --dimension 3 --packing-fraction "$1" --n "$2" >"$log" 2>&1 || true
-    awk '/^3d_/ {printf "%s %s %s\n", $5, $(NF - 1), $NF}' "$log"
+    awk '$1 == "case" {for (k = 1; k <= NF; ++k) if ($k == "w/Enskog") w = k}
+        /^3d_/ {printf "%s %s %s\n", $5, $w, $NF}' "$log"
 }
 
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"

@@ -177,6 +177,12 @@ class EventDrivenRunner final : public EngineRunner<D> {
         detail.value("cell_crossings", c.cell_crossings);
         detail.value("wall_hits", c.wall_hits);
         detail.value("stale_events", c.stale_events);
+        if (engine_.neighbour_skin() > 0.0) {
+            // Dense gases find their pairs through neighbour shells (neighbour_shells.hpp).
+            perf.value("neighbour_skin", engine_.neighbour_skin());
+            detail.value("shell_exits", c.shell_exits);
+            detail.value("periodic_wraps", c.wraps);
+        }
     }
 
   private:

@@ -24,6 +24,7 @@
 // header so that they inline into it.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -85,6 +86,16 @@ class CellList {
         }
         insert(i, id(cc_[i]));
         return wrap;
+    }
+    // Moves particle i to the cell of point x (inside the box or within round-off of it; clamped
+    // like build()): the neighbour shells' centres move by jumps, not crossings.
+    void relocate(std::uint32_t i, const Vec<D>& x) {
+        remove(i);
+        for (int a = 0; a < D; ++a) {
+            const auto k = static_cast<std::int32_t>(std::floor(x[a] / width_[a]));
+            cc_[i][a] = std::clamp(k, 0, ncell_[a] - 1);
+        }
+        insert(i, id(cc_[i]));
     }
 
     // Writes up to 3^D cell ids to out (room for kMaxNeighbours needed) and returns how many

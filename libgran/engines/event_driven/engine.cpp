@@ -49,7 +49,7 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     events_.reset(n);
     now_ = 0;
     for (std::size_t i = 0; i < n; ++i) now_ = std::max(now_, p_.t[i]);
-    cells_.build(box_, largest_diameter(), p_.r, settings_.cell_layout);
+    set_up_pair_search();
     const std::size_t box_partner = contacts_.wall_named("box");
     for (int a = 0; a < D; ++a) {
         if (!box_.periodic[std::size_t(a)] && box_partner == contacts_.walls.size()) {
@@ -87,15 +87,16 @@ void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells
     if (!cells_.image_offsets().empty()) {
         scan_gathered_images(i, n, best_out, partner_out);
     } else if (gravity_) {
-        scan_gathered<true>(i, n, best_out, partner_out);
+        scan_gathered<true>(i, cells_.candidates(), n, best_out, partner_out);
     } else {
-        scan_gathered<false>(i, n, best_out, partner_out);
+        scan_gathered<false>(i, cells_.candidates(), n, best_out, partner_out);
     }
 }
 
 template <int D>
 template <bool Gravity>
-void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, std::size_t n, double& best_out,
+void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* candidates,
+                                         std::size_t n, double& best_out,
                                          std::int32_t& partner_out) const {
     // Locals (not the reference arguments or members) in the loop: writes through references
     // would force the compiler to reload every array pointer after each improvement.
@@ -103,7 +104,7 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, std::size_t n, double&
     const Vec<D>* v = p_.v.data();
     const double* t_local = p_.t.data();
     const std::uint32_t* species = p_.species.data();
-    const std::uint32_t* buf = cells_.candidates();
+    const std::uint32_t* buf = candidates;
     const double now = now_;
     const Vec<D> ri = r[i];
     const Vec<D> vi = v[i];
@@ -138,7 +139,7 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, std::size_t n, double&
             }
             const Vec<D> dr = box_.separation(ri, rj);
             const Vec<D> dv = vi - vj;
-            const double t = pair_collision_time<D>(dr, dv, contact(j), best);
+            const double t = pair_collision_time_branchless<D>(dr, dv, contact(j));
             if (t < best) {
                 best = t;
                 partner = std::int32_t(j);
@@ -189,11 +190,24 @@ void EventDrivenEngine<D>::scan_gathered_images(std::uint32_t i, std::size_t n, 
 template <int D>
 void EventDrivenEngine<D>::predict(std::uint32_t i) {
     // i must be at now_.
+    if (shells_on_) {
+        predict_in_shell(i);
+        return;
+    }
     std::int32_t cells[CellList<D>::kMaxNeighbours];
     const int n = cells_.neighbours(i, cells);
     double best = kInf;
     std::int32_t partner = -1;
     scan_cells(i, cells, n, best, partner);
+    schedule(i, best, partner);
+}
+
+// With neighbour shells (engine_shells.cpp): a scan of i's list. Here, so that the scan inlines.
+template <int D>
+void EventDrivenEngine<D>::predict_in_shell(std::uint32_t i) {
+    double best = kInf;
+    std::int32_t partner = -1;
+    scan_gathered<false>(i, shells_.list(i), shells_.size(i), best, partner);
     schedule(i, best, partner);
 }
 
@@ -233,6 +247,17 @@ void EventDrivenEngine<D>::predict_all() {
             partner[j] = std::int32_t(i);
         }
     };
+    if (shells_on_) {
+        // Every pair in the lists once, from its lower index.
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const std::uint32_t* list = shells_.list(i);
+            for (std::size_t k = 0, m = shells_.size(i); k < m; ++k) {
+                if (list[k] > i) meet(i, list[k]);
+            }
+        }
+        for (std::uint32_t i = 0; i < n; ++i) schedule(i, best[i], partner[i]);
+        return;
+    }
     for (std::uint32_t i = 0; i < n; ++i) {
         const std::int32_t own = cells_.cell_of(i);
         std::size_t m = cells_.gather(&own, 1);
@@ -272,6 +297,11 @@ void EventDrivenEngine<D>::schedule(std::uint32_t i, double collision, std::int3
     double best = collision;
     EventKind kind = partner >= 0 ? EventKind::collision : EventKind::none;
     std::int32_t code_best = partner;
+    if (shells_on_) {
+        schedule_in_shell(i, best, kind, code_best);
+        events_.set(i, now_ + best, kind, code_best);
+        return;
+    }
     // Cell crossings, and walls on bounded axes.
     for (int a = 0; a < D; ++a) {
         if (box_.periodic[a] && g_[a] == 0.0) {
@@ -342,8 +372,18 @@ double EventDrivenEngine<D>::axis_event(std::uint32_t i, int a, double best, Eve
         }
     }
     if (periodic) return t_best;
+    return wall_event(i, a, std::min(best, t_best), t_best, kind, code);
+}
+
+template <int D>
+double EventDrivenEngine<D>::wall_event(std::uint32_t i, int a, double horizon, double t_best,
+                                        EventKind& kind, int& code) const {
+    const double x = p_.r[i][a];
+    const double v = p_.v[i][a];
+    const double ga = g_[a];
+    const std::int32_t c = cells_.coordinate(i, a);
+    const std::int32_t nc = cells_.cells(a);
     const double radius = 0.5 * diameter_[p_.species[i]];
-    const double horizon = std::min(best, t_best);
     for (int side = 0; side < 2; ++side) {
         const WallSlot& wall = walls_[std::size_t(2 * a + side)];
         const bool in_reach = side == 0 ? c < wall.layers : c >= nc - wall.layers;
@@ -462,10 +502,13 @@ void EventDrivenEngine<D>::set_wall(int axis, int side, const WallMotion& motion
     const double reach = motion.reach();
     w.base = side == 0 ? reach : box_.length[axis] - reach;
     w.simple = motion.is_static() && g_[axis] == 0.0;
-    // A particle centre in contact lies within 2 reach + radius of the box boundary.
+    // A particle centre in contact lies within 2 reach + radius of the box boundary (and, with
+    // neighbour shells, the cell is that of its shell's centre, up to skin / 2 further).
     const double dmax = largest_diameter();
-    const auto layers =
-        static_cast<std::int32_t>(std::floor((2.0 * reach + 0.5 * dmax) / cells_.width(axis))) + 1;
+    const double skin = shells_on_ ? shells_.skin() : 0.0;
+    const auto layers = static_cast<std::int32_t>(std::floor(
+                            (2.0 * reach + 0.5 * dmax + 0.5 * skin) / cells_.width(axis))) +
+                        1;
     w.layers = std::min(layers, cells_.cells(axis));
     if (2.0 * reach + dmax > box_.length[axis]) {
         throw std::invalid_argument("set_wall: the wall's excursion leaves no room for particles");

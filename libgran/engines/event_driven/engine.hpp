@@ -2,9 +2,13 @@
 // Event-driven molecular dynamics of inelastic hard disks (D = 2) and spheres (D = 3), one
 // templated code path. Design (see docs/architecture.md):
 //  - structure-of-arrays particle state with per-particle clocks (lazy position updates);
-//  - a cell list (cell_list.hpp: cells at least one largest diameter wide) with cell-crossing
-//    events; after a crossing only the newly adjacent layer of cells is scanned (the earlier best
-//    collision is kept);
+//  - where pairs are found, chosen from the scene (choose_neighbour_skin, engine_shells.cpp):
+//    - dilute gases: a cell list (cell_list.hpp: cells at least one largest diameter wide) with
+//      cell-crossing events; after a crossing only the newly adjacent layer of cells is scanned
+//      (the earlier best collision is kept);
+//    - dense gases: neighbour shells (neighbour_shells.hpp), a list per particle of the particles
+//      it can meet before it leaves its shell, rebuilt at a shell-exit event; the cell grid then
+//      holds the shells' centres, and a crossing of a periodic boundary is a wrap event;
 //  - one pending event per particle, validated lazily with per-particle collision counters, in an
 //    indexed 4-ary heap (scheduler.hpp: O(log N) per event, no allocation per event);
 //  - the event loop pops, validates and dispatches; the engine itself holds the physics: free
@@ -31,6 +35,7 @@
 #include "libgran/engines/event_driven/cell_list.hpp"
 #include "libgran/engines/event_driven/collision_rules.hpp"
 #include "libgran/engines/event_driven/event_times.hpp"
+#include "libgran/engines/event_driven/neighbour_shells.hpp"
 #include "libgran/engines/event_driven/pair_counts.hpp"
 #include "libgran/engines/event_driven/scheduler.hpp"
 #include "libgran/plugins/law.hpp"
@@ -43,6 +48,10 @@ struct EngineSettings {
     double tc = 1e-6;                                // [time]
     std::array<double, 3> gravity{0, 0, 0};          // uniform acceleration [length/time^2]
     CellLayout cell_layout = CellLayout::automatic;  // forced only by benchmarks (gran_bench)
+    // Neighbour shells' skin in largest diameters: negative, the engine chooses from the packing
+    // fraction (choose_neighbour_skin); 0, cells only; > 0, shells of this skin (benchmarks and
+    // tests; refused with gravity).
+    double neighbour_skin = -1.0;
 };
 
 struct EngineCounters {
@@ -58,8 +67,14 @@ struct EngineCounters {
     std::uint64_t full_rescans_after_crossing = 0;  // crossings whose kept collision went stale
     std::uint64_t sorts = 0;                        // re-sorts of the particle storage by cell
     std::uint64_t tc_wall_hits = 0;                 // wall hits made elastic by the TC guard
-    std::uint64_t wall_lifts = 0;  // hits whose rebound was raised to the resting speed g tc
+    std::uint64_t wall_lifts = 0;   // hits whose rebound was raised to the resting speed g tc
+    std::uint64_t shell_exits = 0;  // neighbour lists rebuilt (neighbour_shells.hpp)
+    std::uint64_t wraps = 0;        // crossings of a periodic boundary with neighbour shells
 };
+
+// The neighbour shells' skin (in largest diameters) the engine uses for a scene of this dimension,
+// packing fraction and size, 0 for cells: measured, docs/performance.md.
+double choose_neighbour_skin(int dimension, double packing_fraction, std::size_t particles);
 
 template <int D>
 class EventDrivenEngine;
@@ -123,6 +138,8 @@ class EventDrivenEngine {
     // storage index of a particle changes; ids()[k] is the original index (placement order) of the
     // particle stored at k. Collision records carry original ids.
     const std::vector<std::uint32_t>& ids() const { return id_; }
+    // The neighbour shells' skin in largest diameters, 0 if the engine uses cells.
+    double neighbour_skin() const { return shells_on_ ? shells_.skin() / largest_diameter() : 0.0; }
 
     void set_collision_sink(CollisionSink<D>* sink) { sink_ = sink; }
 
@@ -175,11 +192,15 @@ class EventDrivenEngine {
     void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
                     std::int32_t& partner);
     template <bool Gravity>
-    void scan_gathered(std::uint32_t i, std::size_t n, double& best, std::int32_t& partner) const;
+    void scan_gathered(std::uint32_t i, const std::uint32_t* candidates, std::size_t n,
+                       double& best, std::int32_t& partner) const;
     // One-cell periodic axes: every image of each candidate (CellList::image_offsets()).
     void scan_gathered_images(std::uint32_t i, std::size_t n, double& best,
                               std::int32_t& partner) const;
     double axis_event(std::uint32_t i, int a, double best, EventKind& kind, int& code) const;
+    // The earliest wall contact of i on bounded axis a before `horizon` (if earlier than t_best).
+    double wall_event(std::uint32_t i, int a, double horizon, double t_best, EventKind& kind,
+                      int& code) const;
     void schedule(std::uint32_t i, double collision, std::int32_t partner);
     // Events: what each does to the state, then the re-prediction of the particles involved.
     template <class L>
@@ -197,6 +218,15 @@ class EventDrivenEngine {
         }
     }
     void cross_cell(std::uint32_t i, int code);
+    // With neighbour shells (engine_shells.cpp): the pair search set up from the scene, i's scan
+    // of its list, the shell exit, walls and periodic wraps among its next events, and the two
+    // events of their own.
+    void set_up_pair_search();
+    void predict_in_shell(std::uint32_t i);
+    void schedule_in_shell(std::uint32_t i, double& best, EventKind& kind, std::int32_t& code);
+    void leave_shell(std::uint32_t i);
+    void wrap(std::uint32_t i, int code);
+    typename NeighbourShells<D>::Sizes sizes() const { return {p_.species.data(), radius_.data()}; }
     template <class L>
     void hit_wall(std::uint32_t i, int code);
     // After a wall hit's reflection: the resting-contact lift, the wall's impulse and hit count,
@@ -232,6 +262,8 @@ class EventDrivenEngine {
     std::vector<double> last_collision_;
     Scheduler events_;
     CellList<D> cells_;
+    bool shells_on_ = false;
+    NeighbourShells<D> shells_;
 
     PairCounts pair_collisions_;
     CollisionSink<D>* sink_ = nullptr;

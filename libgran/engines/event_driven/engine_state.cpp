@@ -52,6 +52,7 @@ void EventDrivenEngine<D>::sort_by_cell() {
     apply_order(last_collision_, order);
     events_.reorder(order, inv);
     cells_.reorder(order);
+    if (shells_on_) shells_.reorder(order, inv);
     ++counters_.sorts;
 }
 
@@ -67,6 +68,8 @@ void EventDrivenEngine<D>::checkpoint(StateArchive& ar) {
     ar.io(last_collision_);
     ar.io(events_);
     ar.io(cells_);
+    ar.io(shells_on_);
+    if (shells_on_) ar.io(shells_);
     ar.io(pair_collisions_);
     ar.io(wall_hit_count_);
     ar.io(wall_impulse_);

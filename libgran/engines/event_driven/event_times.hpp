@@ -1,7 +1,9 @@
 #pragma once
-// When events happen: the collision time of a pair and the crossing time of a cell boundary, the
-// root finders of the event-driven engine's predictions (walls: next_wall_contact in
-// libgran/core/wall_motion.hpp).
+// When events happen: the collision time of a pair, the crossing time of a cell boundary and the
+// exit time from a neighbour shell, the root finders of the event-driven engine's predictions
+// (walls: next_wall_contact in libgran/core/wall_motion.hpp).
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -28,6 +30,33 @@ template <int D>
     return c / (-b + std::sqrt(disc));
 }
 
+// pair_collision_time without a bound and without branches, bit for bit the same value: the
+// scans' "receding?" and "missing?" tests are unpredictable (half the pairs of a dense fluid
+// recede), and each misprediction cost more than the square root and division computed for every
+// candidate here (perf annotate, 3D phi 0.4: 30% of the scan's cycles at the two branches). The
+// square root of a negative discriminant is a NaN without errno (the SSE2 instruction, not the libm
+// call) and is then discarded.
+template <int D>
+[[gnu::always_inline]] inline double pair_collision_time_branchless(const Vec<D>& dr,
+                                                                    const Vec<D>& dv,
+                                                                    double sigma) {
+    const double b = dr.dot(dv);
+    const double c = dr.squaredNorm() - sigma * sigma;
+    const double disc = b * b - dv.squaredNorm() * c;
+    // SSE2 on scalars: written with ?: gcc turned the "disc > 0" selection back into a branch.
+    const __m128d vb = _mm_set_sd(b), vc = _mm_set_sd(c), vdisc = _mm_set_sd(disc);
+    const __m128d zero = _mm_setzero_pd(), inf = _mm_set_sd(kInf);
+    // sqrt(disc) - b is bit for bit -b + sqrt(disc) (negation is exact, addition commutes).
+    const __m128d root = _mm_div_sd(vc, _mm_sub_sd(_mm_sqrt_sd(vdisc, vdisc), vb));
+    auto select = [](__m128d mask, __m128d yes, __m128d no) {
+        return _mm_or_pd(_mm_and_pd(mask, yes), _mm_andnot_pd(mask, no));
+    };
+    __m128d t = select(_mm_cmpgt_sd(vdisc, zero), root, inf);  // a miss: +inf
+    t = _mm_andnot_pd(_mm_cmple_sd(vc, zero), t);              // overlapping: 0 (now)
+    t = select(_mm_cmplt_sd(vb, zero), t, inf);                // receding: +inf
+    return _mm_cvtsd_f64(t);
+}
+
 // Earliest s >= 0 at which x(s) = c + v s + a s^2 / 2 (c: position relative to a cell boundary)
 // crosses 0 moving in direction dir (+1 up, -1 down), or +inf. Direction-aware so a particle that
 // has just crossed a boundary (and sits on it, either side by round-off) is never sent back at
@@ -47,6 +76,22 @@ inline double directed_crossing(double c, double v, double a, int dir) {
         s = v < 0.0 ? 2.0 * c / (sq - v) : -(v + sq) / a;
     }
     return s >= 0.0 ? s : kInf;
+}
+
+// Time s >= 0 at which a particle at offset d from its shell's centre, moving in a straight line at
+// v, reaches distance h from it (neighbour_shells.hpp), or +inf at rest. The root of
+// |d + v s|^2 = h^2 with s >= 0: (-b + sqrt(b^2 - a c)) / a, with a = v.v, b = d.v,
+// c = d.d - h^2 <= 0; for b > 0 the form -c / (b + sqrt(...)) avoids cancellation. A particle
+// already on or past the shell (round-off) leaves now.
+template <int D>
+inline double shell_exit_time(const Vec<D>& d, const Vec<D>& v, double h) {
+    const double a = v.squaredNorm();
+    if (a == 0.0) return kInf;
+    const double b = d.dot(v);
+    const double c = d.squaredNorm() - h * h;
+    if (c >= 0.0) return 0.0;
+    const double sq = std::sqrt(b * b - a * c);
+    return b > 0.0 ? -c / (b + sq) : (sq - b) / a;
 }
 
 }  // namespace gran

@@ -74,6 +74,12 @@ int EventDrivenEngine<D>::advance_with(double t_limit, std::uint64_t collision_l
             case EventKind::wall:
                 hit_wall<L>(i, events_.code(i));
                 break;
+            case EventKind::shell:
+                leave_shell(i);
+                break;
+            case EventKind::wrap:
+                wrap(i, events_.code(i));
+                break;
             default:
                 move(i);
                 repredict(i);

@@ -4,8 +4,8 @@
 // partner's counter, the kept collision): an event reads and writes all of them, and at
 // N = 10^6, where the particle of each event is a random one, six parallel arrays were six cache
 // lines from memory per event and the record is one.
-//  - An event is a collision (code: the partner), a cell crossing or a wall hit (code: 2 axis +
-//    side), or none.
+//  - An event is a collision (code: the partner), a cell crossing, a wall hit or a periodic wrap
+//    (code: 2 axis + side), a neighbour-shell exit, or none.
 //  - Invalidation is lazy: a collision stores the partner's collision counter at prediction; if
 //    the partner has changed velocity since, the event is stale and is simply re-predicted.
 //  - The earliest collision of the last neighbour scan is kept apart from the event (kept_time,
@@ -22,7 +22,7 @@
 
 namespace gran {
 
-enum class EventKind : std::uint8_t { none, collision, cell, wall };
+enum class EventKind : std::uint8_t { none, collision, cell, wall, shell, wrap };
 
 class Scheduler {
   public:

@@ -1,0 +1,93 @@
+#pragma once
+// Neighbour shells of the event-driven engine for dense gases: the "bounding neighbourhoods" of
+// Donev, Torquato & Stillinger, J. Comput. Phys. 202, 737 (2005), the scheme of Smallenburg's EDMD.
+//  - Particle i has a shell centred at c_i, the point where its list was last built, and stays
+//    within skin / 2 of it: the engine schedules a shell-exit event (shell_exit_time,
+//    event_times.hpp) that rebuilds the list around i's new position first.
+//  - Two particles can then touch only if |c_i - c_j| <= R_i + R_j + skin, and the lists hold
+//    exactly those pairs, each in both lists. A prediction scans i's list (5-15 particles in a
+//    dense fluid) instead of the 3^D cells around it, and no particle crosses cells.
+//  - A rebuild finds the new neighbours through the engine's cell grid, which holds the centres
+//    (cells at least 2 R_max + skin wide) and is updated by CellList::relocate.
+// Bookkeeping only: the engine computes every event time.
+#include <cstdint>
+#include <vector>
+
+#include "libgran/core/box.hpp"
+#include "libgran/core/cache_line.hpp"
+#include "libgran/core/state_archive.hpp"
+#include "libgran/core/vec.hpp"
+#include "libgran/engines/event_driven/cell_list.hpp"
+
+namespace gran {
+
+template <int D>
+class NeighbourShells {
+  public:
+    // The per-species contact radii the lists are built with.
+    struct Sizes {
+        const std::uint32_t* species;
+        const double* radius;
+    };
+
+    // Shells of width `skin` around every particle at r, whose centres fill `cells` (built with
+    // cells at least 2 R_max + skin wide, no one-cell periodic axis); every list is built.
+    void build(const Box<D>& box, double skin, const std::vector<Vec<D>>& r, CellList<D>& cells,
+               Sizes sizes);
+    // Particle i, now at x, has reached the edge of its shell: a new shell centred at x, and
+    // every list it enters or leaves updated.
+    void rebuild(std::uint32_t i, const Vec<D>& x, const Box<D>& box, CellList<D>& cells,
+                 Sizes sizes);
+
+    double skin() const { return skin_; }
+    const Vec<D>& centre(std::uint32_t i) const { return centre_[i]; }
+    const std::uint32_t* list(std::uint32_t i) const { return &rows_[i * stride_ + 1]; }
+    std::size_t size(std::uint32_t i) const { return rows_[i * stride_]; }
+
+    // The particles were re-sorted (order[k]: old index of the particle now at k, inv: its
+    // inverse); the lists follow them.
+    void reorder(const std::vector<std::uint32_t>& order, const std::vector<std::uint32_t>& inv);
+
+    void checkpoint(StateArchive& ar) {
+        ar.section("neighbour shells");
+        ar.io(skin_);
+        ar.io(centre_);
+        ar.io(stride_);
+        ar.io(rows_);
+    }
+
+  private:
+    // Whether i and j can meet before one of them leaves its shell; the margin (1e-9 of the
+    // reach) covers the round-off of positions at a shell-exit event.
+    bool near(const Box<D>& box, std::uint32_t i, std::uint32_t j, Sizes sizes) const {
+        const double reach =
+            (sizes.radius[sizes.species[i]] + sizes.radius[sizes.species[j]] + skin_) *
+            (1.0 + 1e-9);
+        return box.separation(centre_[i], centre_[j]).squaredNorm() < reach * reach;
+    }
+    void add(std::uint32_t i, std::uint32_t j) {
+        if (rows_[i * stride_] + 1 == stride_) grow();
+        std::uint32_t* row = &rows_[i * stride_];
+        row[1 + row[0]++] = j;
+    }
+    // Removes j from i's list (order not kept).
+    void drop(std::uint32_t i, std::uint32_t j) {
+        std::uint32_t* row = &rows_[i * stride_];
+        std::uint32_t k = 1;
+        while (row[k] != j) ++k;
+        row[k] = row[row[0]--];
+    }
+    void grow();
+
+    double skin_ = 0;
+    std::vector<Vec<D>> centre_;
+    // Per particle a row of stride_ words: the count, then the neighbours (rows double when one
+    // fills up).
+    std::size_t stride_ = 0;
+    std::vector<std::uint32_t, CacheLineAllocator<std::uint32_t>> rows_;
+};
+
+extern template class NeighbourShells<2>;
+extern template class NeighbourShells<3>;
+
+}  // namespace gran
