@@ -236,8 +236,10 @@ void EventDrivenEngine<D>::predict_all() {
     const double* radius = radius_.data();
     auto meet = [&](std::uint32_t i, std::uint32_t j) {
         const Vec<D> dr = box_.separation(r[i], r[j]);
-        const double t = pair_collision_time<D>(
-            dr, v[i] - v[j], radius[species[i]] + radius[species[j]], std::max(best[i], best[j]));
+        // Branch-free (as the scans): a pair the bound would have rejected gets a time later than
+        // both bests, so nothing changes.
+        const double t = pair_collision_time_branchless<D>(dr, v[i] - v[j],
+                                                           radius[species[i]] + radius[species[j]]);
         if (t < best[i]) {
             best[i] = t;
             partner[i] = std::int32_t(j);
