@@ -181,6 +181,32 @@ TEST(EventDrivenEngine, NeighbourShellsMeetTheCellsCollisionsOfRoughSpheresInABo
     expect_same_collisions<3>(box, t, c, placed<3>(box, t, c, 23), 0.5, 1500);
 }
 
+// A vibrating floor (no gravity): the wall's reach in cell layers counts the shells' skin.
+TEST(EventDrivenEngine, NeighbourShellsMeetTheCellsCollisionsAboveAVibratingFloor) {
+    const SpeciesTable t = bidisperse(250, 250, 0.8);
+    const auto c = testing::contacts_of(t, "{alpha: 0.9}");
+    Box<3> box = testing::cube_for<3>(t, 0.35, true);
+    box.periodic[2] = false;
+    const Particles<3> p = placed<3>(box, t, c, 26);
+    auto run = [&](double skin) {
+        EngineSettings s;
+        s.neighbour_skin = skin;
+        EventDrivenEngine<3> engine(box, t, c, p, s);
+        engine.set_wall(2, 0, WallMotion::sinusoid(0.05, 6.0), 0);
+        CollisionLog<3> log;
+        engine.set_collision_sink(&log);
+        engine.advance(kInf, 2000);
+        EXPECT_GT(engine.wall_hits()[4], 20u);
+        return log;
+    };
+    const auto cells = run(0.0), shells = run(0.5);
+    ASSERT_EQ(cells.pairs.size(), shells.pairs.size());
+    for (std::size_t k = 0; k < cells.pairs.size(); ++k) {
+        ASSERT_EQ(cells.pairs[k], shells.pairs[k]) << "collision " << k;
+        ASSERT_NEAR(cells.times[k], shells.times[k], 1e-9) << "collision " << k;
+    }
+}
+
 // A checkpoint taken mid-run and loaded into an engine built from the same scene continues bit
 // for bit as the uninterrupted run (the lists and centres are part of the state).
 TEST(EventDrivenEngine, NeighbourShellsCheckpointContinuesBitForBit) {
