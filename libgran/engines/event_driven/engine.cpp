@@ -296,12 +296,10 @@ void EventDrivenEngine<D>::predict_after_crossing(std::uint32_t i, int axis, int
 template <int D>
 void EventDrivenEngine<D>::schedule(std::uint32_t i, double collision, std::int32_t partner) {
     events_.keep_collision(i, now_ + collision, partner, partner >= 0 ? count_[partner] : 0);
-    double best = collision;
-    EventKind kind = partner >= 0 ? EventKind::collision : EventKind::none;
-    std::int32_t code_best = partner;
+    Earliest next{collision, partner >= 0 ? EventKind::collision : EventKind::none, partner};
     if (shells_on_) {
-        schedule_in_shell(i, best, kind, code_best);
-        events_.set(i, now_ + best, kind, code_best);
+        schedule_in_shell(i, next);
+        events_.set(i, now_ + next.time, next.kind, next.code);
         return;
     }
     // Cell crossings, and walls on bounded axes.
@@ -314,23 +312,15 @@ void EventDrivenEngine<D>::schedule(std::uint32_t i, double collision, std::int3
             const std::int32_t up = v > 0.0 ? 1 : 0;
             const double t =
                 std::max(((cells_.coordinate(i, a) + up) * cells_.width(a) - p_.r[i][a]) / v, 0.0);
-            if (t < best) {
-                best = t;
-                kind = EventKind::cell;
-                code_best = 2 * a + up;
-            }
+            next.consider(t, EventKind::cell, 2 * a + up);
             continue;
         }
         EventKind k = EventKind::none;
         int code = 0;
-        const double t = axis_event(i, a, best, k, code);
-        if (t < best) {
-            best = t;
-            kind = k;
-            code_best = code;
-        }
+        const double t = axis_event(i, a, next.time, k, code);
+        next.consider(t, k, code);
     }
-    events_.set(i, now_ + best, kind, code_best);
+    events_.set(i, now_ + next.time, next.kind, next.code);
 }
 
 template <int D>

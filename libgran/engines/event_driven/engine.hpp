@@ -202,6 +202,19 @@ class EventDrivenEngine {
     double wall_event(std::uint32_t i, int a, double horizon, double t_best, EventKind& kind,
                       int& code) const;
     void schedule(std::uint32_t i, double collision, std::int32_t partner);
+    // The earliest of a particle's candidate events while schedule() collects them.
+    struct Earliest {
+        double time;
+        EventKind kind;
+        std::int32_t code;
+        void consider(double t, EventKind k, std::int32_t c) {
+            if (t < time) {
+                time = t;
+                kind = k;
+                code = c;
+            }
+        }
+    };
     // Events: what each does to the state, then the re-prediction of the particles involved.
     template <class L>
     void collide(std::uint32_t i, std::uint32_t j);
@@ -223,7 +236,7 @@ class EventDrivenEngine {
     // events of their own.
     void set_up_pair_search();
     void predict_in_shell(std::uint32_t i);
-    void schedule_in_shell(std::uint32_t i, double& best, EventKind& kind, std::int32_t& code);
+    void schedule_in_shell(std::uint32_t i, Earliest& next);
     void leave_shell(std::uint32_t i);
     void wrap(std::uint32_t i, int code);
     typename NeighbourShells<D>::Sizes sizes() const { return {p_.species.data(), radius_.data()}; }

@@ -56,38 +56,25 @@ void EventDrivenEngine<D>::set_up_pair_search() {
 }
 
 template <int D>
-void EventDrivenEngine<D>::schedule_in_shell(std::uint32_t i, double& best, EventKind& kind,
-                                             std::int32_t& code) {
+void EventDrivenEngine<D>::schedule_in_shell(std::uint32_t i, Earliest& next) {
     const Vec<D>& x = p_.r[i];
     const Vec<D>& v = p_.v[i];
-    const double exit =
-        shell_exit_time<D>(box_.separation(x, shells_.centre(i)), v, 0.5 * shells_.skin());
-    if (exit < best) {
-        best = exit;
-        kind = EventKind::shell;
-        code = 0;
-    }
+    next.consider(
+        shell_exit_time<D>(box_.separation(x, shells_.centre(i)), v, 0.5 * shells_.skin()),
+        EventKind::shell, 0);
     for (int a = 0; a < D; ++a) {
         if (box_.periodic[a]) {
             // Positions stay in the box: a wrap at each periodic boundary.
             if (v[a] == 0.0) continue;
             const int up = v[a] > 0.0 ? 1 : 0;
-            const double t = std::max(((up ? box_.length[a] : 0.0) - x[a]) / v[a], 0.0);
-            if (t < best) {
-                best = t;
-                kind = EventKind::wrap;
-                code = 2 * a + up;
-            }
+            next.consider(std::max(((up ? box_.length[a] : 0.0) - x[a]) / v[a], 0.0),
+                          EventKind::wrap, 2 * a + up);
             continue;
         }
         EventKind k = EventKind::none;
         int c = 0;
-        const double t = wall_event(i, a, best, kInf, k, c);
-        if (t < best) {
-            best = t;
-            kind = k;
-            code = c;
-        }
+        const double t = wall_event(i, a, next.time, kInf, k, c);
+        next.consider(t, k, c);
     }
 }
 
@@ -122,11 +109,10 @@ void EventDrivenEngine<D>::wrap(std::uint32_t i, int code) {
     events_.commit(i);
 }
 
-#define GRAN_INSTANTIATE(D)                                                                   \
-    template void EventDrivenEngine<D>::set_up_pair_search();                                 \
-    template void EventDrivenEngine<D>::schedule_in_shell(std::uint32_t, double&, EventKind&, \
-                                                          std::int32_t&);                     \
-    template void EventDrivenEngine<D>::leave_shell(std::uint32_t);                           \
+#define GRAN_INSTANTIATE(D)                                                          \
+    template void EventDrivenEngine<D>::set_up_pair_search();                        \
+    template void EventDrivenEngine<D>::schedule_in_shell(std::uint32_t, Earliest&); \
+    template void EventDrivenEngine<D>::leave_shell(std::uint32_t);                  \
     template void EventDrivenEngine<D>::wrap(std::uint32_t, int);
 GRAN_INSTANTIATE(2)
 GRAN_INSTANTIATE(3)
