@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "libgran/core/h5.hpp"
 #include "libgran/core/kinetic_theory.hpp"
 #include "tests/support/run_scene.hpp"
 
@@ -15,7 +16,8 @@ using gran::testing::error;
 using gran::testing::run_yaml;
 using gran::testing::value;
 
-void check_frequency(int d, double phi, int n) {
+// Returns the neighbour shells' skin the run's engine used (0: cells).
+double check_frequency(int d, double phi, int n) {
     const std::string yaml = fmt::format(R"(
 dimension: {}
 seed: 5
@@ -41,6 +43,11 @@ run: {{equilibration: 30, measurement: 200, sample_interval: 2}}
     EXPECT_NEAR(value(w) / expected, 1.0, 0.03)
         << fmt::format("d={} phi={}: measured {:.5f} +- {:.5f}, Enskog {:.5f}", d, phi, value(w),
                        error(w), expected);
+    const auto file = h5::File::open_read(
+        (testing::temp_dir() / fmt::format("enskog_{}d_{}.h5", d, phi)).string());
+    return file.root().exists("performance/neighbour_skin")
+               ? file.root().read_doubles("performance/neighbour_skin").at(0)
+               : 0.0;
 }
 
 TEST(EquilibriumCollisionFrequency, MatchesEnskogHendersonForDisksAtPhi005) {
@@ -53,7 +60,11 @@ TEST(EquilibriumCollisionFrequency, MatchesEnskogCarnahanStarlingForSpheresAtPhi
     check_frequency(3, 0.05, 2000);
 }
 TEST(EquilibriumCollisionFrequency, MatchesEnskogCarnahanStarlingForSpheresAtPhi020) {
-    check_frequency(3, 0.20, 2000);
+    EXPECT_EQ(check_frequency(3, 0.20, 2000), 0.0);  // on cells
+}
+// A dense fluid (below freezing at 0.494), where the engine finds pairs through neighbour shells.
+TEST(EquilibriumCollisionFrequency, MatchesEnskogCarnahanStarlingForSpheresAtPhi045OnShells) {
+    EXPECT_EQ(check_frequency(3, 0.45, 2000), 0.5);
 }
 
 }  // namespace
