@@ -10,10 +10,10 @@ namespace gran {
 double choose_neighbour_skin(int dimension, double packing_fraction, std::size_t particles) {
     // Measured with gran_bench --skin, shells against cells side by side (docs/performance.md,
     // "Neighbour shells"). Shells win only in dense 3D gases small enough for their lists to stay
-    // in cache: at N = 10976 with skin 0.5, 1.15x cells' rate at phi 0.45 and 1.32x at 0.5, but
-    // 0.91x at 0.4 and 0.64x at 0.3 (particles leave their shells too often, and a rebuild scans
-    // 27 cells of centres); at phi 0.45, 1.03-1.13x at N = 3e4 and 0.85-0.92x at 5e4. In 2D
-    // (phi 0.6-0.75, skins 0.5 and 0.7) shells were 0.72-1.2x cells, no clear gain anywhere.
+    // in cache: at N = 10976 with skin 0.5, 1.13-1.26x cells' rate at phi 0.45 and 1.29-1.36x at
+    // 0.5, but 0.90-0.98x at 0.4 and 0.64x at 0.3 (particles leave their shells too often, and a
+    // rebuild scans 27 cells of centres); at phi 0.45, 1.03-1.13x at N = 3e4 and 0.85-0.92x at 5e4.
+    // In 2D (phi 0.6-0.75, skins 0.5 and 0.7) shells were 0.72-1.2x cells, no clear gain anywhere.
     if (dimension != 3 || particles > 40000) return 0.0;
     return packing_fraction >= 0.43 ? 0.5 : 0.0;
 }
