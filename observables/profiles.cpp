@@ -83,8 +83,14 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
             const long wrapped = ((k % long(bins_)) + long(bins_)) % long(bins_);
             deposit(std::size_t(wrapped), f);
         }
+        // The central window and its periodic images: a segment that sticks out of [0, L) on one
+        // side has its other part in the window's image (a window of the whole box must receive
+        // every collision whole). On a bounded axis the segment lies inside and the images are
+        // empty.
         const double mlo = 0.5 * (1 - window_) * length_, mhi = 0.5 * (1 + window_) * length_;
-        const double fm = share(mlo, mhi);
+        double fm = 0;
+        for (long k = long(std::floor(lo / length_)); k <= long(std::floor(hi / length_)); ++k)
+            fm += share(mlo + double(k) * length_, mhi + double(k) * length_);
         if (fm > 0) deposit(bins_, fm);
     }
 

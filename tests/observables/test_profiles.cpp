@@ -233,3 +233,59 @@ TEST(Pressure, VibratedGasHasUniformMeasuredVerticalPressure) {
 
 }  // namespace
 }  // namespace gran
+
+namespace gran {
+namespace {
+
+// A central window of the whole box (middle_window 1) must see every collision whole, including
+// those whose pair straddles the periodic boundary of the profile axis: its compressibility factor
+// Z = P / (n T) then equals the one from the slabs (the same particles and collisions, summed
+// differently) to round-off. Before the fix the window lost the part of such a collision's segment
+// outside [0, L) and read Z about 1.2% low (3D, packing fraction 0.3).
+void check_whole_box_window(int dimension) {
+    const std::string tag = "window_" + std::to_string(dimension) + "d";
+    const std::string scene = fmt::format(R"(
+dimension: {}
+seed: 5
+species: [{{name: a, count: 1000}}]
+interactions: {{alpha: 1}}
+box: {{packing_fraction: 0.3}}
+initial: {{placement: lattice}}
+observables: [{{type: profiles, axis: y, bins: 8, middle_window: 1.0}}]
+run: {{equilibration: 5, measurement: 20, sample_interval: 0.5}}
+)",
+                                          dimension);
+    testing::run_yaml(scene, tag);
+    auto f = h5::File::open_read((testing::temp_dir() / (tag + ".h5")).string());
+    auto g = f.root().group("observables/profiles");
+    auto scalar = [&](const std::string& name) { return g.read_doubles(name).at(0); };
+    const std::string axes = dimension == 2 ? "xy" : "xyz";
+    double slab_p = 0, middle_p = 0, middle_coll = 0;
+    for (char c : axes) {
+        const std::string name = fmt::format("pressure/P_{}{}", c, c);
+        const auto p = g.read_doubles(name);
+        for (double x : p) slab_p += x / double(p.size() * axes.size());
+        middle_p += scalar("middle/" + name) / double(axes.size());
+        middle_coll += scalar("middle/" + name + "_collisional") / double(axes.size());
+    }
+    const auto n = g.read_doubles("a/number_density");
+    const auto T = g.read_doubles("a/T");
+    double nT = 0;
+    for (std::size_t b = 0; b < n.size(); ++b) nT += n[b] * T[b] / double(n.size());
+    const double z_slabs = slab_p / nT;
+    const double z_middle = middle_p / (scalar("middle/a/number_density") * scalar("middle/a/T"));
+    ::testing::Test::RecordProperty("Z_slabs", fmt::format("{:.5f}", z_slabs));
+    ::testing::Test::RecordProperty("Z_middle", fmt::format("{:.5f}", z_middle));
+    EXPECT_GT(middle_coll, 0.5 * middle_p) << "the collisional part dominates at phi 0.3";
+    EXPECT_NEAR(z_middle / z_slabs, 1.0, 1e-9) << dimension << "D";
+}
+
+TEST(Profiles, WholeBoxWindowCountsCollisionsAcrossThePeriodicBoundaryIn2D) {
+    check_whole_box_window(2);
+}
+TEST(Profiles, WholeBoxWindowCountsCollisionsAcrossThePeriodicBoundaryIn3D) {
+    check_whole_box_window(3);
+}
+
+}  // namespace
+}  // namespace gran
