@@ -54,6 +54,11 @@ class EngineView {
         }
         return e / double(p.size());
     }
+    // The pair virial of soft contacts at now(), per species s and axis a at [s * D + a]:
+    // sum over the grain-grain contacts of (r_i - r_j)_a F_a, half to each partner's species.
+    // Empty for an engine of binary collisions (their momentum transfer reaches observables as
+    // collision records).
+    virtual std::vector<double> contact_virial() const { return {}; }
     // Surface position of a wall at time t (index 2 * axis + side), e.g. a vibrating base.
     virtual double wall_position(int code, double t) const = 0;
     // Mean surface position of a wall over one period of its motion from t (period <= 0: at t),

@@ -35,6 +35,7 @@ class DemView final : public EngineView<D> {
     const std::array<std::uint64_t, 2 * D>& wall_hits() const override { return e_.wall_hits(); }
     const std::array<double, 2 * D>& wall_impulse() const override { return e_.wall_impulse(); }
     double wall_position(int code, double t) const override { return e_.wall_position(code, t); }
+    std::vector<double> contact_virial() const override { return e_.contact_virial(); }
 
   private:
     const DemEngine<D>& e_;

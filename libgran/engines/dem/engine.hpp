@@ -83,6 +83,7 @@ struct DemLawLoops {
     std::string name;
     void (DemEngine<D>::*accumulate_forces)(double dt_advance) = nullptr;
     double (DemEngine<D>::*elastic_energy)() const = nullptr;
+    std::vector<double> (DemEngine<D>::*contact_virial)() const = nullptr;
 };
 
 // The shortest contact duration t_c of the soft-contact law over the grain-grain contacts, and the
@@ -129,6 +130,10 @@ class DemEngine {
     const std::vector<Vec<D>>& forces() const { return f_; }
     const std::vector<AngVec<D>>& torques() const { return tau_; }
     DemEnergies energies() const;
+    // The pair virial of the grain-grain contacts at now(), per species s and axis a at
+    // [s * D + a]: sum over the contacts of (r_i - r_j)_a F_a (F the force on i, the contact
+    // force of the last evaluation), half to the species of each partner. Walls excluded.
+    std::vector<double> contact_virial() const { return (this->*loops_.contact_virial)(); }
     const DemNeighbourList<D>& neighbour_list() const { return list_; }
     // The dynamic state, saved or loaded between steps (libgran/core/state_archive.hpp): particles,
     // the forces of the last evaluation (the next half kick uses them), the predicted velocities,
@@ -160,6 +165,8 @@ class DemEngine {
     void accumulate_forces_with(double dt_advance);
     template <class L>
     double elastic_energy_with() const;
+    template <class L>
+    std::vector<double> contact_virial_with() const;
 
   private:
     struct Wall {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "libgran/core/parallel.hpp"
 #include "libgran/core/registry.hpp"
@@ -378,15 +379,55 @@ double DemEngine<D>::elastic_energy_with() const {
     return e;
 }
 
+// The pair virial of the contacts (DemEngine::contact_virial): each contact's force recomputed as
+// the last evaluation made it (positions and predicted velocities unchanged since; the spring as
+// that evaluation left it, on a copy), so nothing of the state changes.
+template <int D>
+template <class L>
+std::vector<double> DemEngine<D>::contact_virial_with() const {
+    const std::size_t n = p_.size(), ns = mass_.size();
+    const typename L::Pair* params = contacts_.template contacts<L>();
+    const AngVec<D> zero = ang_zero<D>();
+    std::vector<double> virial(ns * D, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t si = p_.species[i];
+        for (std::uint32_t k = list_.start[i]; k < list_.start[i + 1]; ++k) {
+            const std::uint32_t j = list_.partner[k];
+            const std::uint32_t sj = p_.species[j];
+            const double sigma_ij = sigma_[si * ns + sj];
+            const Vec<D> d = box_.separation(p_.r[i], p_.r[j]);  // from j to i
+            const double dist = d.norm();
+            if (!(dist < sigma_ij)) continue;
+            const Vec<D> nrm = (1.0 / dist) * d;
+            const double li = radius_[si], lj = radius_[sj];
+            const AngVec<D> wi = p_.rotating() ? w_pred_[i] : zero;
+            const AngVec<D> wj = p_.rotating() ? w_pred_[j] : zero;
+            const Vec<D> g = contact_velocity<D>(v_pred_[i], v_pred_[j], wi, wj, li, lj, nrm);
+            Vec<D> xi = Vec<D>::Zero();
+            if constexpr (L::history) xi = list_.spring[k];
+            const ContactForce<D> c = L::template force<D>(params[contacts_.pair_index(si, sj)],
+                                                           sigma_ij - dist, nrm, g, li, lj, xi);
+            for (int a = 0; a < D; ++a) {
+                const double w = 0.5 * d[a] * c.force[a];
+                virial[si * D + std::size_t(a)] += w;
+                virial[sj * D + std::size_t(a)] += w;
+            }
+        }
+    }
+    return virial;
+}
+
 // Registers the loops of law L for disks and spheres (called by register_law<L>).
 template <class L>
 void register_dem_loops(const std::string& name) {
     Registry<DemLawLoops<2>>::instance().add({name,
                                               &DemEngine<2>::template accumulate_forces_with<L>,
-                                              &DemEngine<2>::template elastic_energy_with<L>});
+                                              &DemEngine<2>::template elastic_energy_with<L>,
+                                              &DemEngine<2>::template contact_virial_with<L>});
     Registry<DemLawLoops<3>>::instance().add({name,
                                               &DemEngine<3>::template accumulate_forces_with<L>,
-                                              &DemEngine<3>::template elastic_energy_with<L>});
+                                              &DemEngine<3>::template elastic_energy_with<L>,
+                                              &DemEngine<3>::template contact_virial_with<L>});
 }
 
 }  // namespace gran

@@ -694,3 +694,61 @@ TEST(DemEngine, VibratedBedReachesASteadyGranularTemperature) {
 
 }  // namespace
 }  // namespace gran
+
+namespace gran {
+namespace {
+
+// The contact virial (DemEngine::contact_virial, the pressure observable's interaction part on
+// this engine): for a cluster of grains far from the periodic boundaries, the sum over contacts
+// of (r_i - r_j)_a F_a equals sum_i r_{i,a} f_{i,a} over the particles' total contact forces
+// (Newton's third law pair by pair), with damping, friction and tangential springs. Checked per
+// axis after each of 200 steps (about 50 with two or more contacts), to 1e-12 of the largest term.
+template <int D>
+void check_contact_virial() {
+    const SpeciesTable t =
+        table_of({make_species("a", 1, 1, 0.4, 4), make_species("b", 2, 0.8, 0.5, 4)});
+    const ContactTable contacts =
+        soft(t, "cundall_strack",
+             "contact_time: 0.02, restitution: 0.7, friction: 0.4, tangential_damping: 5");
+    Particles<D> p;
+    p.resize(8, true);
+    Rng rng = make_rng(5, Stream::Velocities);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const Vec<D> centre = Vec<D>::Constant(15.0);
+    for (std::size_t i = 0; i < 8; ++i) {
+        p.species[i] = i < 4 ? 0 : 1;
+        Vec<D> offset;
+        for (int a = 0; a < D; ++a) offset[a] = 1.05 * double((i >> a) & 1) + 0.05 * u(rng);
+        p.r[i] = centre + offset;
+        p.v[i] = -2.0 * (offset - Vec<D>::Constant(0.5));  // inwards: the cluster presses together
+        for (int a = 0; a < D; ++a) p.v[i][a] += 0.3 * u(rng);
+    }
+    DemEngine<D> e(make_box<D>(30, true), t, contacts, p, DemSettings{});
+    std::uint64_t checked = 0;
+    for (int s = 0; s < 200; ++s) {
+        e.step();
+        const std::vector<double> virial = e.contact_virial();
+        ASSERT_EQ(virial.size(), std::size_t(2 * D));
+        const auto& ps = e.particles();
+        for (int a = 0; a < D; ++a) {
+            double direct = 0, scale = 1e-300;
+            for (std::size_t i = 0; i < ps.size(); ++i) {
+                const double term = (ps.r[i][a] - centre[a]) * e.forces()[i][a];
+                direct += term;
+                scale = std::max(scale, std::abs(term));
+            }
+            const double sum = virial[std::size_t(a)] + virial[std::size_t(D + a)];
+            ASSERT_NEAR(sum, direct, 1e-12 * scale) << "step " << s << " axis " << a;
+        }
+        if (e.counters().active_contacts >= 2) ++checked;
+    }
+    EXPECT_GT(checked, 20u) << "the cluster must collide: steps with two or more contacts";
+}
+
+TEST(DemEngine, ContactVirialEqualsTheVirialOfTheParticlesTotalForces) {
+    check_contact_virial<2>();
+    check_contact_virial<3>();
+}
+
+}  // namespace
+}  // namespace gran
