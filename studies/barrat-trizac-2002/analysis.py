@@ -81,12 +81,30 @@ class Run:
 
     def angular_pdf(self, species=None):
         """Angular-velocity distribution (whole cell, rescaled by sqrt(T_rot/I)): (c, P, error)
-        and the kurtosis, or None when the run has no angular_velocity_pdf (smooth particles)."""
-        if "observables/angular_velocity_pdf" not in self.result.root:
-            return None
+        and the kurtosis with its error, or None when the run has no angular_velocity_pdf or has
+        smooth particles (beta = -1: the observable then writes only a note)."""
         path = f"observables/angular_velocity_pdf/{species or self.species[0]}"
+        if path not in self.result.root:
+            return None
         kurtosis = self.result.estimate(f"{path}/kurtosis")
         return self.result.histogram(f"{path}/z", "scaled_").curve(), *kurtosis
+
+    def angular_kurtosis(self, species=None):
+        """Kurtosis <c^4>/<c^2>^2 of the whole-cell angular velocities, with its error."""
+        ang = self.angular_pdf(species)
+        if ang is None:
+            raise KeyError(f"{self.path.name}: no angular velocities (smooth particles?)")
+        return ang[1], ang[2]
+
+    def mixing_kurtosis(self, species=None):
+        """Kurtosis the whole-cell angular velocities would have if they were Gaussian in every
+        slab: 3 <n T_rot^2> <n> / <n T_rot>^2 over the slabs of the profiles (n the number
+        density). The whole-cell distribution is rescaled by one T_rot while T_rot varies with
+        y; this is the part of its kurtosis that the profile alone explains."""
+        s = species or self.species[0]
+        _, n, _ = self.profile(f"{s}/number_density")
+        _, t, _ = self.profile(f"{s}/T_rot")
+        return float(3 * np.sum(n * t**2) * np.sum(n) / np.sum(n * t) ** 2)
 
     def slab_scalar(self, centre, component, key, species=None):
         """A scalar of a slab distribution ('kurtosis', 'temperature')."""

@@ -244,6 +244,48 @@ def height_independent(res):
     return close_pdfs(res[name].slab_pdf(0.25, "x"), res[name].slab_pdf(0.5, "x"))
 
 
+def angular(res, name):
+    """Whole-cell kurtosis of the angular velocities of a rough run, with its error."""
+    return res[name].angular_kurtosis()
+
+
+@check("7(b)", "The angular velocity distributions, also displayed in Fig. 7, share a similar "
+       "non-Gaussian character", "whole-cell kurtosis of c_w = w/sqrt(T_rot/I) above 3 by more "
+       "than 5 errors and above the kurtosis the T_rot(y) profile alone gives (Gaussian in every "
+       "slab), and P(c_w = 0) above 1/sqrt(2 pi), Fig. 7 runs")
+def angular_non_gaussian(res):
+    names = [mono(0.9, 0, 0.015), mono(0.8, 0, 0.015), mono(0.9, 0, 0.015, "thermal")]
+    kurt = [angular(res, n) for n in names]
+    mixing = [res[n].mixing_kurtosis() for n in names]
+    p0 = [float(np.interp(0.0, *res[n].angular_pdf()[0][:2])) for n in names]
+    holds = (all(k - 3 > 5 * e for k, e in kurt) and all(k > m for (k, _), m in zip(kurt, mixing))
+             and all(p > 1 / np.sqrt(2 * np.pi) for p in p0))
+    cx = [kurtosis(res, n) for n in names]
+    return holds, (f"kurtosis {', '.join(est(k) for k in kurt)}; from the T_rot profile alone "
+                   f"{fmt(mixing)}; P(0) {fmt(p0)} (Gaussian 0.399); middle-slab kurtosis of "
+                   f"c_x (panel a) {fmt(cx)}")
+
+
+@check("7(b)", "[the angular velocity distributions share] the same dependence with the "
+       "parameters [as P(c_x): broader if alpha decreases, if beta increases, if phi0 increases; "
+       "thermal walls slightly broader]",
+       "whole-cell kurtosis of c_w: alpha 0.8 > 0.9 (beta 0); beta -0.8 < -0.5 < -0.2 < 0; "
+       "phi0 0.04 > 0.015; thermal > sawtooth at phi0 0.015 and 0.04 (alpha 0.9)")
+def angular_dependence(res):
+    base = angular(res, mono(0.9, 0, 0.015))[0]
+    alpha = angular(res, mono(0.8, 0, 0.015))[0]
+    betas = [angular(res, mono(0.9, b, 0.015))[0] for b in (-0.8, -0.5, -0.2)] + [base]
+    phi = angular(res, mono(0.9, 0, 0.04))[0]
+    thermal = {p: (angular(res, mono(0.9, 0, p, "thermal"))[0], angular(res, mono(0.9, 0, p))[0])
+               for p in (0.015, 0.04)}
+    holds = (alpha > base and increasing(betas) and phi > base
+             and all(t > v for t, v in thermal.values()))
+    return holds, (f"alpha 0.9: {base:.3f}, 0.8: {alpha:.3f}; beta -0.8, -0.5, -0.2, 0: "
+                   f"{fmt(betas)}; phi0 0.04: {phi:.3f}; " + "; ".join(
+                       f"phi0 {p}: thermal {t:.3f}, sawtooth {v:.3f}"
+                       for p, (t, v) in thermal.items()))
+
+
 @check("9", "the cut-off R increases [i.e. leads to broader P(alpha_1d|g_x)] if alpha decreases, "
        "and if beta or phi0 increase",
        "R of exp(-(alpha_1d g_x)^2/R) at g_x = 1: alpha 0.8 > 0.9; beta 0 > -1; phi0 0.04 > 0.015")

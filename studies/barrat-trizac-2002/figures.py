@@ -141,18 +141,26 @@ def fig6(res, outdir):
 
 
 def fig7(res, outdir):
-    """Fig. 7(a): P(c_x) in the middle of the cell; (b) P of the angular velocities."""
+    """Fig. 7(a): P(c_x) in the middle of the cell; (b) P of the angular velocities.
+
+    Panel (b) (caption: "Probability distribution function of the angular velocities for the
+    same parameters", i.e. phi0 = 0.015, N = 500, alpha = 0.9 and 0.8, beta = 0) is the whole
+    cell, rescaled by the instantaneous sqrt(T_rot/I); the caption says neither where nor how
+    it is rescaled. The paper gives no number for it, only "The angular velocity distributions,
+    also displayed in Fig. 7, share a similar non-Gaussian character and the same dependence
+    with the parameters": one row per run with its kurtosis against "> 3" (non-Gaussian, as
+    P(c_x)); the dependence on the parameters goes to claims.csv."""
     fig, (a, b) = new_figure(2)
+    rows = []
     for (_, name, run), fmt in zip(FIG7_RUNS, ("+", "*", "o")):
         kurt = res[run].slab_scalar(0.5, "x", "kurtosis")
         errorbars(a, positive(res[run].slab_pdf(0.5, "x")), fmt,
                   f"{name} (kurtosis {kurt:.2f})", mfc="none")
-    for (_, name, run), fmt in zip(FIG7_RUNS, ("+", "*", "o")):
-        ang = res[run].angular_pdf()
-        if ang is not None:
-            data, kurt, kerr = ang
-            errorbars(b, positive(data), fmt,
-                      f"{name} (kurtosis {kurt:.3f} $\\pm$ {kerr:.3f})", mfc="none")
+    for (tag, name, run), fmt in zip(FIG7_RUNS, ("+", "*", "o")):
+        data, kurt, kerr = res[run].angular_pdf()
+        errorbars(b, positive(data), fmt,
+                  f"{name} (kurtosis {kurt:.3f} $\\pm$ {kerr:.3f})", mfc="none")
+        rows.append((f"fig7b_{tag}_omega_kurtosis", "> 3", kurt, kerr))
     for ax in (a, b):
         gaussian(ax)
         ax.set_yscale("log")
@@ -162,7 +170,7 @@ def fig7(res, outdir):
     label(b, r"$c_\omega = \omega/\sqrt{T_{rot}/I}$", r"$P(c_\omega)$",
           "(b) angular velocities, whole cell")
     save(fig, outdir, "fig7", r"Fig. 7: $\phi_0 = 0.015$, N = 500, $\beta = 0$")
-    return []
+    return rows
 
 
 def fig8(res, outdir):
@@ -200,6 +208,9 @@ def fig9(res, outdir):
             # "they ... show an exp[-(alpha_1d g_x)^2/R] decrease for the case of vibrating
             #  walls (closer to the experimental situation), and a broader form
             #  exp[-(alpha_1d g_x)/R'] for thermal walls"
+            # The paper fits no exponent: 2 and 1 are the forms it reads off Fig. 9(b). q of a
+            # form without prefactor depends on g_x and on the window (2.0 to 2.4 next to
+            # vibrating walls, g_x = 0.5 at the top): README.md here and cutoff.py.
             q, e = cutoff_exponent(res[run].conditional(g), g)
             paper = 2 if wall == "vibrating" else 1
             rows.append((f"fig9_{wall}_g{g}_cutoff_exponent", paper, q, e))
