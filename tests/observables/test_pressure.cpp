@@ -112,7 +112,7 @@ run: {equilibration: 50, measurement: 2000, sample_interval: 1}
 // Inelastic disks heated by the stochastic thermostat: at packing fraction 0.01 the collisional
 // part Z - 1 equals the inelastic Enskog value (1 + alpha) phi chi (Barrat & Trizac 2002, Eq. (7))
 // within 3 standard errors plus 1%. Denser, it falls below it: (Z - 1) / (Z_E - 1) measured
-// 0.986 at phi 0.05 and 0.923 at phi 0.2 for alpha = 0.7 (docs/physics.md). The elastic value
+// 0.982 at phi 0.05 and 0.923 at phi 0.2 for alpha = 0.7 (docs/physics.md). The elastic value
 // (1 + 1) phi chi would be 18% off.
 TEST(Pressure, HeatedInelasticDisksMatchInelasticEnskogInTheDiluteLimit) {
     const YAML::Node p = testing::run_yaml(R"(
