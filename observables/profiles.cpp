@@ -15,6 +15,7 @@
 
 #include "libgran/core/kinetic_theory.hpp"
 #include "libgran/plugins/observable.hpp"
+#include "observables/local_flow.hpp"
 
 namespace gran {
 namespace {
@@ -41,8 +42,17 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         ref_ = table_.index_of(ref);
         if (ref_ == table_.size()) p.fail("reference_species", "unknown species '" + ref + "'");
         rotating_ = info.rotating;
-        // Per block, per (bin + 1 middle row), per species: count, sum m v_a^2 (D), sum I w^2.
-        stride_ = 2 + D;
+        if (p.has("flow_cell")) {
+            std::size_t n = 0;
+            for (const auto& sp : table_.species) n += sp.count;
+            check_flow_cell(p.real("flow_cell"), info.box_length, n, D,
+                            [&](const std::string& why) { p.fail("flow_cell", why); });
+            flow_ = LocalFlow<D>(p.real("flow_cell"), info.box_length, table_.size());
+            local_ = true;
+        }
+        // Per block, per (bin + 1 middle row), per species: count, sum m v_a^2 (D), sum I w^2;
+        // about the local flow also G_st (local_flow.hpp), t = 0 .. ns - 1.
+        stride_ = 2 + D + (local_ ? table_.size() : 0);
         sums_.assign(nblocks_ * (bins_ + 1) * table_.size() * stride_, 0.0);
         samples_in_block_.assign(nblocks_, 0);
         // The collisional virial needs binary collision records: event-driven runs only.
@@ -107,6 +117,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         current_block_ = std::min(nblocks_ - 1, samples_ * nblocks_ / expected);
         ++samples_in_block_[block];
         const double lo = 0.5 * (1 - window_) * length_, hi = 0.5 * (1 + window_) * length_;
+        if (local_) flow_.compute(p, table_);
         for (std::size_t i = 0; i < p.size(); ++i) {
             double y = p.r[i][axis_];
             y -= length_ * std::floor(y / length_);  // periodic images (bounded axes stay inside)
@@ -166,7 +177,21 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         }
         double count(std::size_t s) const { return v[s * self->stride_]; }
         double component(std::size_t s, int c) const {
+            if (self->local_) return local_components(c)[s];
             return v[s * self->stride_ + 1 + std::size_t(c)] / v[s * self->stride_];
+        }
+        // T_{s,c} of every species about the local flow: sum_t G_st v_t = sum_{i in s} c_i^2.
+        std::vector<double> local_components(int c) const {
+            const std::size_t ns = self->table_.size(), st = self->stride_;
+            std::vector<double> g(ns * ns), rhs(ns);
+            for (std::size_t s = 0; s < ns; ++s) {
+                const double m = self->table_.species[s].mass;
+                rhs[s] = v[s * st + 1 + std::size_t(c)] / m;
+                for (std::size_t t = 0; t < ns; ++t) g[s * ns + t] = v[s * st + 2 + D + t];
+            }
+            std::vector<double> x = solve_small(g, rhs);
+            for (std::size_t s = 0; s < ns; ++s) x[s] *= self->table_.species[s].mass;
+            return x;
         }
         double temperature(std::size_t s) const {
             double t = 0;
@@ -177,6 +202,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
             return v[s * self->stride_ + 1 + D] / v[s * self->stride_] / (D == 2 ? 1.0 : 3.0);
         }
         double mixture_temperature() const {
+            if (self->local_) return local_mixture(-1);
             double e = 0, n = 0;
             for (std::size_t s = 0; s < self->table_.size(); ++s) {
                 for (int c = 0; c < D; ++c) e += v[s * self->stride_ + 1 + std::size_t(c)];
@@ -184,7 +210,23 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
             }
             return e / (D * n);
         }
+        // Mixture temperature about the local flow (component c, or the mean over all if c < 0).
+        double local_mixture(int c) const {
+            double e = 0, n = 0;
+            for (int a = 0; a < D; ++a) {
+                if (c >= 0 && a != c) continue;
+                const std::vector<double> t = local_components(a);
+                for (std::size_t s = 0; s < self->table_.size(); ++s) e += count(s) * t[s];
+            }
+            for (std::size_t s = 0; s < self->table_.size(); ++s) n += count(s);
+            return e / (n * (c < 0 ? D : 1));
+        }
         double anisotropy(int axis) const {
+            if (self->local_) {
+                const double along = local_mixture(axis), t = local_mixture(-1);
+                const double across = (D * t - along) / (D - 1);
+                return (along - across) / (2 * t);
+            }
             double along = 0, across = 0, n = 0;
             for (std::size_t s = 0; s < self->table_.size(); ++s) {
                 for (int c = 0; c < D; ++c) {
@@ -322,7 +364,13 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         double* a = &sums_[((block * (bins_ + 1) + row) * table_.size() + s) * stride_];
         const double m = table_.species[s].mass;
         a[0] += 1;
-        for (int c = 0; c < D; ++c) a[1 + c] += m * p.v[i][c] * p.v[i][c];
+        if (local_) {
+            const Vec<D> c = p.v[i] - flow_.flow_of(i);
+            for (int k = 0; k < D; ++k) a[1 + k] += m * c[k] * c[k];
+            flow_.add_variance_weights(i, s, m, a + 2 + D);
+        } else {
+            for (int c = 0; c < D; ++c) a[1 + c] += m * p.v[i][c] * p.v[i][c];
+        }
         if (rotating_) a[1 + D] += ctx.engine.species_inertia(s) * ang_squared<D>(p.w[i]);
     }
 
@@ -380,6 +428,8 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
     bool started_ = false;
     std::size_t current_block_ = 0;
     std::size_t samples_ = 0;
+    bool local_ = false;  // temperatures about the local flow (`flow_cell`)
+    LocalFlow<D> flow_;
 };
 
 const char* const kDescription =
@@ -398,7 +448,12 @@ matrix per slab when written: memory and time grow with the square of the number
 With `pressure` it measures the diagonal pressure tensor `pressure/P_xx`, `P_yy` (, `P_zz`): the
 kinetic part plus the collisional (virial) momentum flux shared among the slabs crossed by each
 collision (Irving–Kirkwood); `..._collisional` holds the latter alone. This subscribes to collisions
-(event_driven engine only; not measured on the dem engine).)md";
+(event_driven engine only; not measured on the dem engine).
+
+With `flow_cell` the temperatures (and the anisotropy, gamma and the equation of state built on
+them) are taken about the local flow: each particle's velocity about the mean velocity of its cell
+(cells of about `flow_cell`), with the cells' own-mean correction of `temperatures`. The measured
+pressure keeps the velocities as they are.)md";
 
 const bool registered = register_plugin<Observable, Profiles>(
     "profiles",
@@ -414,7 +469,11 @@ const bool registered = register_plugin<Observable, Profiles>(
              "measure the pressure tensor (kinetic + collisional virial); subscribes to collisions "
              "(event_driven engine; not measured on the dem engine)"),
      optional(text("reference_species", "",
-                   "species whose temperature divides the ratios (default: first)"))},
+                   "species whose temperature divides the ratios (default: first)")),
+     optional(real("flow_cell", "", "length",
+                   "temperatures about the local flow: the mean velocity of cells of about this "
+                   "size, corrected for the cells' own mean (default: the velocities as they are)",
+                   0, 1e308, true))},
     kDescription);
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "libgran/plugins/observable.hpp"
 #include "observables/blocked_histogram.hpp"
+#include "observables/local_flow.hpp"
 
 namespace gran {
 namespace {
@@ -24,6 +25,14 @@ class VelocityPdf final : public Observable<D> {
           nblocks_(static_cast<std::size_t>(p.integer("blocks"))),
           raw_range_(p.has("raw_range") ? p.real("raw_range") : 0.0) {
         per_.resize(table_.size());
+        if (p.has("flow_cell")) {
+            std::size_t n = 0;
+            for (const auto& sp : table_.species) n += sp.count;
+            check_flow_cell(p.real("flow_cell"), info.box_length, n, D,
+                            [&](const std::string& why) { p.fail("flow_cell", why); });
+            flow_ = LocalFlow<D>(p.real("flow_cell"), info.box_length, table_.size());
+            local_ = true;
+        }
     }
 
     void sample(const SampleContext<D>& ctx) override {
@@ -35,11 +44,15 @@ class VelocityPdf final : public Observable<D> {
             nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
         ++samples_;
         const Vec<D> u = centre_of_mass_velocity<D>(p, table_);
+        if (local_) flow_.compute(p, table_);
+        const auto peculiar = [&](std::size_t i) -> Vec<D> {
+            return p.v[i] - (local_ ? flow_.flow_of(i) : u);
+        };
         // Instantaneous per-species, per-component variance for rescaling.
         std::vector<Vec<D>> var(ns, Vec<D>::Zero());
         std::vector<double> cnt(ns, 0);
         for (std::size_t i = 0; i < p.size(); ++i) {
-            const Vec<D> c = p.v[i] - u;
+            const Vec<D> c = peculiar(i);
             var[p.species[i]] += c.cwiseProduct(c);
             cnt[p.species[i]] += 1;
         }
@@ -48,13 +61,28 @@ class VelocityPdf final : public Observable<D> {
         for (std::size_t s = 0; s < ns; ++s) {
             for (int a = 0; a < D; ++a) sd[s][a] = std::sqrt(var[s][a] / cnt[s]);
         }
+        // About the local flow each particle has its own spread, sqrt(sum_t G_it v_t) (the
+        // fewer grains in its cell, the smaller): rescaled by it, Gaussian velocities stay
+        // Gaussian (local_flow.hpp).
+        const std::vector<Vec<D>> v_local =
+            local_ ? local_variances(p, var) : std::vector<Vec<D>>();
         std::vector<Vec<D>> m2(ns, Vec<D>::Zero()), m4(ns, Vec<D>::Zero());
+        std::vector<double> used = cnt;
         for (std::size_t i = 0; i < p.size(); ++i) {
             const std::uint32_t s = p.species[i];
             auto& q = per_[s];
-            const Vec<D> c = p.v[i] - u;
+            const Vec<D> c = peculiar(i);
+            Vec<D> spread = sd[s];
+            if (local_) {
+                spread = own_spread(i, s, v_local);
+                // Alone in its cell: no velocity about the cell's mean to measure.
+                if (!(spread[0] > 0)) {
+                    used[s] -= 1;
+                    continue;
+                }
+            }
             for (int a = 0; a < D; ++a) {
-                const double x = c[a] / sd[s][a];
+                const double x = c[a] / spread[a];
                 q.raw[a].blocks[block](c[a]);
                 q.scaled[a].blocks[block](x);
                 m2[s][a] += x * x;
@@ -63,10 +91,10 @@ class VelocityPdf final : public Observable<D> {
         }
         for (std::size_t s = 0; s < ns; ++s) {
             for (int a = 0; a < D; ++a) {
-                per_[s].raw[a].entries[block] += cnt[s];
-                per_[s].scaled[a].entries[block] += cnt[s];
-                per_[s].c2[a].push(m2[s][a] / cnt[s]);
-                per_[s].c4[a].push(m4[s][a] / cnt[s]);
+                per_[s].raw[a].entries[block] += used[s];
+                per_[s].scaled[a].entries[block] += used[s];
+                per_[s].c2[a].push(m2[s][a] / used[s]);
+                per_[s].c4[a].push(m4[s][a] / used[s]);
             }
         }
     }
@@ -98,6 +126,35 @@ class VelocityPdf final : public Observable<D> {
     }
 
   private:
+    // Per-component variances v_{t,a} = T_{t,a} / m_t about the local flow: the solution of
+    // sum_t G_st v_{t,a} = sum_{i in s} c_{i,a}^2 (`sum2`).
+    std::vector<Vec<D>> local_variances(const Particles<D>& p,
+                                        const std::vector<Vec<D>>& sum2) const {
+        const std::size_t ns = table_.size();
+        std::vector<double> g(ns * ns, 0.0);
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            const std::uint32_t s = p.species[i];
+            flow_.add_variance_weights(i, s, table_.species[s].mass, &g[s * ns]);
+        }
+        std::vector<Vec<D>> v(ns);
+        for (int a = 0; a < D; ++a) {
+            std::vector<double> rhs(ns);
+            for (std::size_t s = 0; s < ns; ++s) rhs[s] = sum2[s][a];
+            const std::vector<double> x = solve_small(g, rhs);
+            for (std::size_t s = 0; s < ns; ++s) v[s][a] = x[s];
+        }
+        return v;
+    }
+
+    Vec<D> own_spread(std::size_t i, std::uint32_t s, const std::vector<Vec<D>>& v) const {
+        std::vector<double> g(table_.size(), 0.0);
+        flow_.add_variance_weights(i, s, table_.species[s].mass, g.data());
+        Vec<D> out = Vec<D>::Zero();
+        for (std::size_t t = 0; t < g.size(); ++t) out += g[t] * v[t];
+        for (int a = 0; a < D; ++a) out[a] = std::sqrt(out[a]);
+        return out;
+    }
+
     struct PerSpecies {
         std::array<BlockedHistogram, D> raw, scaled;
         std::array<Series, D> c2, c4;
@@ -147,12 +204,20 @@ class VelocityPdf final : public Observable<D> {
     bool initialised_ = false;
     std::size_t samples_ = 0;
     std::vector<PerSpecies> per_;
+    bool local_ = false;  // velocities about the local flow (`flow_cell`)
+    LocalFlow<D> flow_;
 };
 
 const char* const kDescription =
     R"md(
 Per species and component: raw P(v_a) and rescaled P(c_a), c_a = v_a / sqrt(T_{s,a}/m_s), with
-block error bars (consecutive blocks of samples); kurtosis <c^4>/<c^2>^2.)md";
+block error bars (consecutive blocks of samples); kurtosis <c^4>/<c^2>^2. Velocities are taken
+about the centre-of-mass velocity, or with `flow_cell` about the mean velocity of their cell of
+the local flow, each rescaled by its own expected spread about its cell's mean (smaller in cells
+of few grains; observables/local_flow.hpp), so that Gaussian velocities stay Gaussian. The cell's
+mean still mixes in the other grains of the cell, which pulls a non-Gaussian kurtosis towards 3
+by about 1/n for n grains per cell; `temperatures` with the same `flow_cell` gives a2 corrected for
+it.)md";
 
 const bool registered = register_plugin<Observable, VelocityPdf>(
     "velocity_pdf",
@@ -165,7 +230,11 @@ const bool registered = register_plugin<Observable, VelocityPdf>(
          "raw histograms cover v in [-raw_range, raw_range] (default: 6 thermal velocities at the "
          "first sample)",
          0, 1e300, true)),  // [-1e308, 1e308] would be an axis of infinite width
-     integer("blocks", "16", "blocks for the error bars of the densities", 2, 1000)},
+     integer("blocks", "16", "blocks for the error bars of the densities", 2, 1000),
+     optional(real("flow_cell", "", "length",
+                   "measure velocities about the local flow: the mean velocity of cells of about "
+                   "this size (default: about the centre-of-mass velocity)",
+                   0, 1e308, true))},
     kDescription);
 
 }  // namespace
