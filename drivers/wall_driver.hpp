@@ -73,8 +73,8 @@ class WallDriver : public Driver<D> {
         std::vector<WallSpec<D>> w;
         for (int side = 0; side < 2; ++side) {
             if (side == 0 ? !lower_ : !upper_) continue;
-            w.push_back(
-                {partner_, axis_, side, motion_[std::size_t(side)], motion_key_, reflection_});
+            w.push_back({partner_, axis_, side, motion_[std::size_t(side)], motion_key_,
+                         reflection_, -1, WallMotion::fixed()});
         }
         return w;
     }

@@ -5,7 +5,9 @@
 // <c^4>/<c^2>^2 - 1 per species. Ratios and a2 are ratios of time averages with jackknife errors
 // over decorrelated blocks.
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -27,6 +29,10 @@ class Temperatures final : public Observable<D> {
         if (ref_ == table_.size()) p.fail("reference_species", "unknown species '" + ref + "'");
         per_species_.resize(table_.size());
         rotating_ = info.rotating;
+        // Free cooling: no driver and some contact dissipates (an elastic gas is stationary).
+        cooling_ = !info.driven &&
+                   std::any_of(info.nominal_restitution.begin(), info.nominal_restitution.end(),
+                               [](double e) { return e < 1; });
         if (p.has("flow_cell")) {
             const double cell = p.real("flow_cell");
             if (table_.size() > kMaxFlowSpecies)
@@ -166,6 +172,17 @@ class Temperatures final : public Observable<D> {
                 gr.estimate("gamma_rot", ratio_of_means(q.t_rot.values(), r.t_rot.values()), "");
         }
         g.attr("reference_species", table_.species[ref_].name);
+        if (cooling_) {
+            // Free cooling: these are averages over a state that keeps changing.
+            g.attr("whole_run_average",
+                   std::string("free cooling: T, gamma and a2 average the whole measurement, "
+                               "transient included; the cooling_state observable measures the "
+                               "scaling state"));
+            spdlog::warn(
+                "temperatures: free cooling, so T, gamma and a2 average the whole run, "
+                "transient included; add the cooling_state observable for the scaling "
+                "state");
+        }
         if (local_) {
             write_flow(g);
         } else {
@@ -298,6 +315,7 @@ class Temperatures final : public Observable<D> {
     Series time_;
     std::vector<std::int64_t> steps_;  // the engine's events or steps at each sample
     // Velocities about the local flow (`flow_cell`), and the series that needs.
+    bool cooling_ = false;  // no driver and dissipative contacts: the gas cools freely
     bool local_ = false;
     double flow_cell_ = 0;
     LocalFlow<D> flow_;

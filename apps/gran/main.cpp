@@ -173,6 +173,7 @@ int cmd_study(const std::string& file, const std::string& out, int jobs, bool qu
             "{} ran, {} reused, {} failed{}; at most {} at a time\nresult: {}\ntable: {}\n",
             rep.ran, rep.reused, rep.failed, rep.interrupted ? " (interrupted)" : "",
             rep.max_concurrent, rep.merged, rep.table);
+        if (!rep.pooled.empty()) std::cout << "replicas pooled: " << rep.pooled << "\n";
         if (!rep.tradeoff.empty()) {
             std::ifstream md(rep.tradeoff);
             std::cout << md.rdbuf() << "table: " << rep.tradeoff << "\n";

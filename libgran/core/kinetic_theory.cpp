@@ -308,6 +308,13 @@ double white_noise_sonine_a2(int d, double alpha) {
            (73 + 56 * dd - 24 * dd * alpha - 105 * alpha + 30 * (1 - alpha) * alpha * alpha);
 }
 
+double hcs_sonine_a2(int d, double alpha) {
+    check_restitution(alpha);
+    const double dd = d;
+    return 16 * (1 - alpha) * (1 - 2 * alpha * alpha) /
+           (9 + 24 * dd - alpha * (41 - 8 * dd) + 30 * (1 - alpha) * alpha * alpha);
+}
+
 double haff_temperature(double T0, double t0, double t) {
     check_positive(t0, "t0");
     const double s = 1.0 + t / t0;

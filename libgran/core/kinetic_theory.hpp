@@ -108,6 +108,13 @@ double haff_temperature(double T0, double t0, double t);
 // Zero for alpha = 1 and alpha = 1/sqrt(2); 0.0256 for spheres and 0.0356 for disks at alpha = 0.5.
 double white_noise_sonine_a2(int d, double alpha);
 
+// Sonine coefficient a2 of the homogeneous cooling state of a monodisperse gas, first Sonine
+// approximation (T. P. C. van Noije & M. H. Ernst, Granular Matter 1, 57 (1998)):
+//   a2 = 16 (1 - alpha)(1 - 2 alpha^2) / (9 + 24 d - alpha (41 - 8 d) + 30 (1 - alpha) alpha^2).
+// Zero for alpha = 1 and 1/sqrt(2); -0.0269 for disks and -0.0146 for spheres at alpha = 0.9. The
+// cooling rate per collision per particle is then zeta* = (1 - alpha^2) / d (1 + 3 a2 / 16).
+double hcs_sonine_a2(int d, double alpha);
+
 // Mean rate of change of the kinetic energy of ONE particle of species i due to collisions with
 // species j (Enskog, both species Maxwellian at T_i, T_j). Derivation: per collision
 // Delta E_i = (m_i/2) [a^2 - 2 a v_i.n], a = mu_ji (1+alpha_ij) g.n; given g,

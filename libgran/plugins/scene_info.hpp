@@ -33,10 +33,17 @@ struct SceneInfo {
     // The engine produces binary collision records (instantaneous collisions); a soft-contact
     // engine has contacts of finite duration instead.
     bool binary_collisions = true;
+    // Some driver injects energy (any driver but `none`): the run is meant to reach a steady
+    // state. Without one the gas cools freely and time averages mix every temperature of the run.
+    bool driven = false;
     // Largest speed of a moving wall (V_p = A omega of a vibrating base), 0 if none; known to the
     // observables (the drivers are built first).
     double peak_velocity = 0;
     double drive_period = 0;  // period of that wall's motion (0: none)
+    // The room between the walls at t = 0, per axis: [room_lower, room_upper] (the walls' surfaces
+    // then; [0, L] when every wall starts at its outermost position, and on periodic axes). The
+    // initial placement puts the particles there (the drivers are built first).
+    std::vector<double> room_lower, room_upper;
     std::size_t index = 0;    // position of the plugin in its list (distinct random streams)
 };
 

@@ -32,6 +32,11 @@ struct WallSpec {
     WallMotion motion;  // prescribed motion along the normal (WallMotion::fixed(): static)
     std::string motion_key = "type";          // the driver key that chose the motion (messages)
     WallReflection<D>* reflection = nullptr;  // null: a contact with the law of `interactions`
+    // Motion of the surface in its own plane, along `slide_axis` (-1: none): the floor and lid of
+    // a box vibrated as a whole. It enters a contact through the tangential relative velocity
+    // only, so it changes nothing for smooth walls (every wall on the event-driven engine).
+    int slide_axis = -1;
+    WallMotion slide;
 };
 
 }  // namespace gran

@@ -71,6 +71,8 @@ class DemRunner final : public EngineRunner<D> {
         for (auto& d : drivers) {
             for (const WallSpec<D>& w : d->walls()) {
                 engine_.set_wall(w.axis, w.side, w.motion, sc.contacts.wall_named(w.partner));
+                if (w.slide_axis >= 0)
+                    engine_.set_wall_slide(w.axis, w.side, w.slide_axis, w.slide);
             }
         }
         for (auto& d : drivers) d->observe(view_);

@@ -304,9 +304,8 @@ void write_results(ResultGroup root, const Scene& sc, const EngineRunner<D>& run
     write_run_performance(perf, totals);
     runner.write_performance(perf, totals.cpu_time);
     // Free cooling (no driver injecting energy) is not meant to be stationary.
-    const bool driven = std::any_of(sc.drivers.begin(), sc.drivers.end(),
-                                    [](const auto& d) { return d.type != "none"; });
-    report_equilibration(check_equilibration(out.measured_energy), sc.schedule, driven, perf);
+    report_equilibration(check_equilibration(out.measured_energy), sc.schedule, sc.info.driven,
+                         perf);
 }
 
 // The checkpoints of a run to `output` (none without a path).

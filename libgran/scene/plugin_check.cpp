@@ -23,7 +23,29 @@ SceneInfo base_info(const Scene& sc) {
     info.initial_temperature = sc.temperature;
     info.gravity = sc.gravity;
     info.binary_collisions = sc.engine->binary_collisions;
+    info.driven = std::any_of(sc.drivers.begin(), sc.drivers.end(),
+                              [](const PluginEntry& d) { return d.type != "none"; });
     return info;
+}
+
+// Narrows the room of the initial placement to a wall's surface at t = 0 (a wall of a vibrating
+// box, or a vibrating wall started at another phase than its outermost position).
+template <int D>
+void note_room(SceneInfo& info, const WallSpec<D>& w) {
+    const auto a = std::size_t(w.axis);
+    if (info.room_lower.empty()) {
+        info.room_lower.assign(std::size_t(D), 0.0);
+        info.room_upper = info.box_length;
+    }
+    // How far inside its outermost position the surface starts (0 for a wall that starts there,
+    // which keeps the room exactly [0, L]).
+    const double inset = w.motion.reach() + (w.side == 0 ? 1 : -1) * w.motion.position(0.0);
+    if (!(inset > 1e-12 * info.box_length[a])) return;
+    if (w.side == 0) {
+        info.room_lower[a] = std::max(info.room_lower[a], inset);
+    } else {
+        info.room_upper[a] = std::min(info.room_upper[a], info.box_length[a] - inset);
+    }
 }
 
 // The drivers: built once; their walls (each side of an axis given by one driver at most) and
@@ -44,6 +66,7 @@ void check_drivers(Scene& sc, EngineDemands& demands, std::vector<std::string>& 
                                           w.side == 0 ? "lower" : "upper", w.axis, slot->name));
             }
             slot = &e;
+            note_room(sc.info, w);
             demands.walls.push_back(
                 {k, w.partner, w.axis, w.side, w.motion, w.motion_key, w.reflection != nullptr});
             if (!w.reflection &&

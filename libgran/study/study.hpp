@@ -86,6 +86,7 @@ struct StudyReport {
     std::string table;       // OUTDIR/<study stem>.study.csv
     int max_concurrent = 0;  // largest number of runs in flight at once
     std::string tradeoff;    // OUTDIR/<study stem>.tradeoff.md when the study has `tradeoff`
+    std::string pooled;      // OUTDIR/<study stem>.pooled.csv when the study has replicas
 };
 
 StudyReport run_study(const Study& study, const StudyOptions& options);

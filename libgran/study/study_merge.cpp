@@ -12,6 +12,7 @@
 
 #include "libgran/core/h5.hpp"
 #include "libgran/study/study_fit.hpp"
+#include "libgran/study/study_pool.hpp"
 #include "libgran/study/study_tradeoff.hpp"
 
 namespace gran {
@@ -58,7 +59,7 @@ void flatten(const YAML::Node& n, const std::string& prefix,
 
 struct Table {
     std::vector<std::string> quantities;  // union over runs, sorted
-    std::vector<std::map<std::string, std::pair<double, double>>> rows;
+    std::vector<SummaryRow> rows;
 };
 
 Table summary_table(const Study& st, const std::vector<std::string>& summaries,
@@ -268,6 +269,8 @@ void merge_study(const Study& st, const std::string& outdir, const RunFiles& fil
     const std::string stem = fs::path(st.file).stem().string();
     rep.table = (fs::path(outdir) / (stem + ".study.csv")).string();
     write_csv(rep.table, st, table, have);
+    const std::string pooled = (fs::path(outdir) / (stem + ".pooled.csv")).string();
+    if (write_pooled_csv(pooled, st, table.quantities, table.rows, have)) rep.pooled = pooled;
     a.fits = fit_all(st, table.quantities, table.rows, have, [&](const StudyFit& f, std::size_t i) {
         return fit_x(f, st.runs[i], table.rows[i]);
     });

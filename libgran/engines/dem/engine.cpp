@@ -191,8 +191,9 @@ void DemEngine<D>::place_walls() {
         if (box_partner == contacts_.walls.size()) {
             fail("the box has a bounded axis but the contacts have no wall partner 'box'");
         }
-        walls_[code(a, 0)] = {true, WallMotion::fixed(), 0.0, box_partner};
-        walls_[code(a, 1)] = {true, WallMotion::fixed(), box_.length[a], box_partner};
+        walls_[code(a, 0)] = {true, WallMotion::fixed(), 0.0, box_partner, -1, WallMotion::fixed()};
+        walls_[code(a, 1)] = {true, WallMotion::fixed(), box_.length[a], box_partner,
+                              -1,   WallMotion::fixed()};
     }
 }
 
@@ -406,6 +407,19 @@ DemEnergies DemEngine<D>::energies() const {
 }
 
 template <int D>
+void DemEngine<D>::set_wall_slide(int wall_axis, int side, int axis, const WallMotion& motion) {
+    if (wall_axis < 0 || wall_axis >= D || side < 0 || side > 1 || axis < 0 || axis >= D ||
+        axis == wall_axis || !walls_[code(wall_axis, side)].present) {
+        fail("set_wall_slide: needs a present wall and an in-plane axis");
+    }
+    if (motion.kind == WallMotion::Kind::sawtooth) fail("set_wall_slide: no sawtooth limit");
+    Wall& w = walls_[code(wall_axis, side)];
+    w.slide_axis = axis;
+    w.slide = motion;
+    reevaluate_forces();
+}
+
+template <int D>
 void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion, std::size_t partner) {
     if (axis < 0 || axis >= D || side < 0 || side > 1 || box_.periodic[std::size_t(axis)]) {
         fail("set_wall: walls need a bounded (non-periodic) axis and side 0 or 1");
@@ -431,6 +445,7 @@ void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion, std::s
     }
     Wall& w = walls_[code(axis, side)];
     w.present = true;
+    w.slide_axis = -1;
     w.motion = motion;
     w.partner = partner;
     w.base = side == 0 ? reach : box_.length[axis] - reach;  // excursion inside [0, L]
@@ -441,6 +456,7 @@ template <int D>
 void DemEngine<D>::remove_wall(int axis, int side) {
     if (axis < 0 || axis >= D || side < 0 || side > 1) fail("remove_wall: no such wall");
     walls_[code(axis, side)].present = false;
+    walls_[code(axis, side)].slide_axis = -1;
     for (std::size_t i = 0; i < p_.size(); ++i) wall_touching_[i * 2 * D + code(axis, side)] = 0;
     reevaluate_forces();
 }

@@ -147,6 +147,10 @@ class DemEngine {
     // Throws std::invalid_argument if one of its contacts is shorter than 5 dt. Forces are
     // re-evaluated at the current time.
     void set_wall(int axis, int side, const WallMotion& motion, std::size_t partner);
+    // The wall's surface also moves in its own plane, along `axis` (another axis than its
+    // normal), with the velocity of `motion` (a box vibrated as a whole: its floor and lid slide
+    // under the grains). Only the tangential force of a contact sees it.
+    void set_wall_slide(int wall_axis, int side, int axis, const WallMotion& motion);
     void remove_wall(int axis, int side);
     bool wall_is_set(int axis, int side) const { return walls_[code(axis, side)].present; }
     // Surface position of a wall at time t (index 2 * axis + side).
@@ -174,6 +178,8 @@ class DemEngine {
         WallMotion motion;
         double base = 0;
         std::size_t partner = 0;  // wall partner in contacts_
+        int slide_axis = -1;      // in-plane motion along this axis (-1: none)
+        WallMotion slide;
     };
     static std::size_t code(int axis, int side) { return std::size_t(2 * axis + side); }
 

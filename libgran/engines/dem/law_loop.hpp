@@ -280,6 +280,7 @@ void DemEngine<D>::wall_range(double dt_advance, std::size_t i0, std::size_t i1,
         nrm[a] = inward;  // into the gas
         Vec<D> vw = Vec<D>::Zero();
         vw[a] = w.motion.velocity(t);
+        if (w.slide_axis >= 0) vw[w.slide_axis] = w.slide.velocity(t);
         double sum = 0;
         std::uint64_t count = 0;
         // Raw pointers (the byte stores to the contact flags may alias anything); a flag is

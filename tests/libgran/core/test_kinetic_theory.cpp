@@ -247,6 +247,11 @@ TEST(KineticTheory, WhiteNoiseSonineA2AtHandComputedPoints) {
     EXPECT_NEAR(theory::white_noise_sonine_a2(3, 0.5), 4.0 / 156.25, 1e-15);
     EXPECT_NEAR(theory::white_noise_sonine_a2(2, 0.5), 4.0 / 112.25, 1e-15);
     EXPECT_EQ(theory::white_noise_sonine_a2(3, 1.0), 0.0);
+    // Homogeneous cooling state: 16 (0.1)(-0.62) / (9 + 48 - 0.9 * 25 + 30 * 0.1 * 0.81) in 2D.
+    EXPECT_NEAR(theory::hcs_sonine_a2(2, 0.9), -0.992 / 36.93, 1e-14);
+    EXPECT_NEAR(theory::hcs_sonine_a2(3, 0.5), 4.0 / 76.25, 1e-14);
+    EXPECT_EQ(theory::hcs_sonine_a2(3, 1.0), 0.0);
+    EXPECT_NEAR(theory::hcs_sonine_a2(2, std::sqrt(0.5)), 0.0, 1e-15);
     EXPECT_NEAR(theory::white_noise_sonine_a2(2, 1 / std::sqrt(2.0)), 0.0, 1e-15);
     EXPECT_LT(theory::white_noise_sonine_a2(3, 0.9), 0.0);
 }
