@@ -3,9 +3,11 @@
 // summary table, and a second invocation recomputes nothing. Power-law fits over the runs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -146,6 +148,62 @@ TEST_F(Study, FourPointSweepRunsTwoAtATimeMergesAndResumeRecomputesNothing) {
     write("scene.yaml", std::string(kScene) + "seed: 9\n");
     const auto fourth = run_gran({"-q", "study", file, "-o", out});
     EXPECT_NE(fourth.output.find("4 ran, 0 reused"), std::string::npos) << fourth.output;
+}
+
+// Replicas pooled: a study with replicas also writes <study>.pooled.csv, one row per point, each
+// quantity the inverse-variance mean of its replicas with error 1 / sqrt(sum 1 / e_i^2) and the
+// Birge ratio of their scatter. Checked against the per-run table the study writes beside it.
+TEST_F(Study, ReplicasArePooledIntoOneRowPerPointWithInverseVarianceWeights) {
+    const std::string file = study_file("grid: {interactions.alpha: [0.8, 0.9]}\nreplicas: 3\n");
+    const std::string out = path("out");
+    const auto r = run_gran({"-q", "study", file, "-o", out, "-j", "2"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("replicas pooled: " + out + "/study.pooled.csv"), std::string::npos)
+        << r.output;
+    auto rows_of = [](const std::string& csv) {
+        std::ifstream in(csv);
+        std::vector<std::vector<std::string>> rows;
+        for (std::string line; std::getline(in, line);) {
+            std::vector<std::string> cells;
+            std::stringstream ss(line);
+            for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+            rows.push_back(cells);
+        }
+        return rows;
+    };
+    const auto runs = rows_of(out + "/study.study.csv");
+    const auto pooled = rows_of(out + "/study.pooled.csv");
+    ASSERT_EQ(pooled.size(), 3u);  // header, two points
+    auto column = [](const std::vector<std::string>& header, const std::string& name) {
+        const auto it = std::find(header.begin(), header.end(), name);
+        EXPECT_NE(it, header.end()) << name;
+        return std::size_t(it - header.begin());
+    };
+    const std::string q = "observables.temperatures.T_mixture";
+    const std::size_t pv = column(pooled[0], q), pe = column(pooled[0], q + ".error"),
+                      rv = column(runs[0], q), re = column(runs[0], q + ".error"),
+                      rn = column(runs[0], "run");
+    EXPECT_EQ(pooled[1][column(pooled[0], "replicas")], "3");
+    for (std::size_t k = 1; k < pooled.size(); ++k) {
+        const std::string group = pooled[k][0];
+        double sw = 0, swx = 0;
+        int members = 0;
+        for (std::size_t i = 1; i < runs.size(); ++i) {
+            if (runs[i][rn].rfind(group + "_r", 0) != 0) continue;
+            const double v = std::stod(runs[i][rv]), e = std::stod(runs[i][re]);
+            sw += 1 / (e * e);
+            swx += v / (e * e);
+            ++members;
+        }
+        EXPECT_EQ(members, 3) << group;
+        EXPECT_NEAR(std::stod(pooled[k][pv]), swx / sw, 1e-8 * std::abs(swx / sw)) << group;
+        EXPECT_NEAR(std::stod(pooled[k][pe]), 1 / std::sqrt(sw), 1e-8 / std::sqrt(sw)) << group;
+    }
+    // Without replicas there is no pooled table.
+    const std::string single = study_file("grid: {interactions.alpha: [0.8]}\n");
+    const auto r2 = run_gran({"-q", "study", single, "-o", path("out2")});
+    ASSERT_EQ(r2.exit_code, 0) << r2.output;
+    EXPECT_FALSE(fs::exists(path("out2") + "/study.pooled.csv"));
 }
 
 // Provenance: a result made by other code (another commit, uncommitted changes, or a build
