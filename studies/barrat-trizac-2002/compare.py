@@ -33,8 +33,12 @@ def table_rows(res):
 
 def write_csv(rows, path):
     """comparison.csv of this paper: the paper's numbers as the study files give them, measured
-    values and errors with four decimals."""
-    comparison.write(rows, path, paper="{}", measured="{:.4f}", error="{:.4f}")
+    values and errors with four decimals, with each row's status against the paper and the
+    written cause of a difference (verdicts.yaml); prints the rows that differ without one."""
+    verdicts = comparison.Verdicts.load(Path(__file__).resolve().parent / "verdicts.yaml")
+    comparison.write(rows, path, paper="{}", measured="{:.4f}", error="{:.4f}",
+                     verdicts=verdicts)
+    comparison.report(rows, verdicts, path)
 
 
 def plot_tables(rows, path):

@@ -270,8 +270,10 @@ def main():
     rows += fig4(sweep, outdir)
     rows += exponent_rows(sweep)
     rows += momentum_rows(sweep)
-    comparison.write(rows, outdir / "comparison.csv")
+    verdicts = comparison.Verdicts.load(Path(__file__).resolve().parent / "verdicts.yaml")
+    comparison.write(rows, outdir / "comparison.csv", verdicts=verdicts)
     print(f"fig1.png ... fig4.png; comparison.csv: {len(rows)} rows")
+    comparison.report(rows, verdicts, outdir / "comparison.csv")
     for q, paper, measured, error in rows:
         err = "" if error is None else f" +- {error:.3g}"
         print(f"  {q:45s} paper {paper:>5}  measured {measured:8.4g}{err}")
