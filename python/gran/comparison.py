@@ -84,11 +84,19 @@ def deviation(row):
 
 def paper_interval(paper):
     """The paper's number as an interval (lo, hi): a number x gives (x, x), a text 'a-b' (a
-    printed range) gives (a, b); None for anything else (no number, a sentence)."""
+    printed range) gives (a, b), '> x' and '< x' (a bound) give (x, inf) and (-inf, x); None for
+    anything else (no number, a sentence)."""
     if isinstance(paper, bool) or paper is None:
         return None
     if isinstance(paper, (int, float, np.floating, np.integer)):
         return None if math.isnan(paper) else (float(paper), float(paper))
+    bound = re.fullmatch(r"\s*([<>])\s*(-?[0-9.eE+]+)\s*", str(paper))
+    if bound:
+        try:
+            x = float(bound.group(2))
+        except ValueError:
+            return None
+        return (x, math.inf) if bound.group(1) == ">" else (-math.inf, x)
     m = re.fullmatch(r"\s*(-?[0-9.eE+]+)\s*-\s*(-?[0-9.eE+]+)\s*", str(paper))
     if m:
         try:
@@ -107,7 +115,11 @@ def agrees(row, sigmas=2.0, relative=0.1):
         return None
     lo, hi = interval
     err = row.error if row.error is not None and not math.isnan(row.error) else 0.0
-    slack = max(sigmas * err, relative * max(abs(lo), abs(hi)))
+    # The relative part scales with the paper's number (a bound's finite end): a bound has no
+    # relative slack, only the measurement's error.
+    finite = [abs(x) for x in interval if math.isfinite(x)]
+    rel = relative if lo == hi or all(math.isfinite(x) for x in interval) else 0.0
+    slack = max(sigmas * err, rel * max(finite))
     return lo - slack <= row.measured <= hi + slack
 
 
@@ -117,11 +129,12 @@ class Verdicts:
     The file (YAML): `tolerance: {sigmas: 2, relative: 0.1}` (the default tolerance of every
     row) and `verdicts:`, a list of `{match: REGEX, cause: TEXT}` with optional `sigmas` and
     `relative` (that rows' own tolerance) and `kind` (what the cause is: gran defect, modelling
-    difference, paper ambiguity, definition, not measurable here). A row takes the first entry
-    whose `match` matches its whole quantity name."""
+    difference, paper ambiguity, definition, not measurable here, statistics, or unexplained: a
+    difference whose cause was looked for and not found, the cause then saying what was ruled
+    out). A row takes the first entry whose `match` matches its whole quantity name."""
 
     KINDS = ("gran defect", "modelling difference", "paper ambiguity", "definition",
-             "not measurable here", "statistics")
+             "not measurable here", "statistics", "unexplained")
 
     def __init__(self, tolerance=None, entries=()):
         tolerance = tolerance or {}

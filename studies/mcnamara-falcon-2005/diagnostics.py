@@ -16,7 +16,8 @@ RESULTS_DIR/diagnostics.csv (`quantity,value,error`, rewritten from scratch):
   definitions (Voronoi packing fraction per disk; largest connected cluster of disks whose gaps
   are below a fraction of d) over the seeds and the variants of diag-fig3.yaml.
 - Fig. 4d: the largest log deviation of every fit of diag-fig4d.yaml (n = 3 ... 6, variants), read
-  with natural logarithms (gran) and with decimal ones (the paper does not say which).
+  with natural logarithms (gran) and with decimal ones (the paper does not say which); and of
+  diag-fig4d-walls.yaml and diag-fig4d-hexbed.yaml (two more readings, when they have run).
 """
 import csv
 import math
@@ -156,6 +157,29 @@ def fig4d(directory, rows):
             print(f"  {point:12s} {q:3s}" + "".join(f"{x:>9s}" for x in cells))
 
 
+FIG4D_READINGS = (("diag-fig4d-walls", "g_rv_walls_r0.95"), ("diag-fig4d-hexbed", "g_rv_hexbed"))
+
+
+def fig4d_readings(directory, rows):
+    """The two readings of diag-fig4d-walls.yaml and diag-fig4d-hexbed.yaml (skipped with a note
+    when they have not run): walls with constant restitution, the lid above a hexagonal bed."""
+    for name, point in FIG4D_READINGS:
+        try:
+            study = StudyFolder(directory, name)
+        except FileNotFoundError:
+            print(f"\nskipped: {name} has not run in {directory}")
+            continue
+        layers = sorted({int(r["species.0.count"]) for r in study.table.runs(point)})
+        print(f"  {point:18s}" + "".join(f"{'n=' + format(c / 100, 'g'):>9s}" for c in layers))
+        for q in QUANTITIES:
+            cells = []
+            for c in layers:
+                dev = study.fit(f"theta_{q}_{point}_count{c}").max_deviation
+                cells.append(f"{dev:.3f}{'*' if dev >= TOLERANCE else ' '} ")
+                rows.append((f"fig4d_maxdev_{q}_{point}_n{c / 100:g}", dev, None))
+            print(f"  {q:18s}" + "".join(f"{x:>9s}" for x in cells))
+
+
 def main():
     directory = Path(sys.argv[1] if len(sys.argv) > 1 else "results/mcnamara-falcon-2005")
     Sweep(directory)  # fails early, naming the missing study, when sweep.yaml has not run
@@ -163,6 +187,7 @@ def main():
     fig2b(directory, rows)
     fig3(directory, rows)
     fig4d(directory, rows)
+    fig4d_readings(directory, rows)
     with open(directory / "diagnostics.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["quantity", "value", "error"])
