@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "libgran/plugins/observable.hpp"
+#include "observables/block_clock.hpp"
 #include "observables/blocked_histogram.hpp"
 
 namespace gran {
@@ -49,8 +50,9 @@ class AngularVelocityPdf final : public Observable<D> {
         if (!ctx.measuring || !rotating_) return;
         const auto& p = ctx.engine.particles();
         const std::size_t ns = table_.size();
-        const std::size_t block = std::min(
-            nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
+        const BlockClock::Place place =
+            clock_.place(samples_, ctx.expected_samples, ctx.open_ended);
+        const std::size_t block = place.block;
         ++samples_;
         std::vector<double> w2(ns, 0), cnt(ns, 0);
         for (std::size_t i = 0; i < p.size(); ++i) {
@@ -74,6 +76,11 @@ class AngularVelocityPdf final : public Observable<D> {
             if (cnt[s] == 0) continue;
             per_[s].c2.push(m2[s] / cnt[s]);
             per_[s].c4.push(m4[s] / cnt[s]);
+        }
+        if (place.merge_after) {
+            for (auto& q : per_) {
+                for (auto& h : q.scaled) h.merge_pairs();
+            }
         }
     }
 
@@ -104,6 +111,7 @@ class AngularVelocityPdf final : public Observable<D> {
         ar.section("angular_velocity_pdf");
         ar.io(samples_);
         ar.io(per_);
+        clock_.checkpoint(ar);
     }
 
   private:
@@ -122,6 +130,7 @@ class AngularVelocityPdf final : public Observable<D> {
     unsigned bins_;
     double range_;
     std::size_t nblocks_;
+    BlockClock clock_{nblocks_};
     std::size_t samples_ = 0;
     std::vector<PerSpecies> per_;
 };

@@ -76,6 +76,26 @@ struct BlockedHistogram {
         }
     }
 
+    // Neighbouring pairs of blocks merged (an open-ended measurement, observables/block_clock.hpp):
+    // block b holds blocks 2b and 2b + 1, the upper half is emptied.
+    void merge_pairs() {
+        const std::size_t n = blocks.size(), half = (n + 1) / 2;
+        for (std::size_t b = 0; b < half; ++b) {
+            Histogram h = blocks[2 * b];
+            double e = entries[2 * b];
+            if (2 * b + 1 < n) {
+                h += blocks[2 * b + 1];
+                e += entries[2 * b + 1];
+            }
+            blocks[b] = h;
+            entries[b] = e;
+        }
+        for (std::size_t b = half; b < n; ++b) {
+            blocks[b].reset();
+            entries[b] = 0;
+        }
+    }
+
     // Writes <prefix>edges (in `edges_unit`), <prefix>density, <prefix>error; edges and density
     // may be rescaled (a change of variable x -> x / scale) for rescaled distributions.
     void write(ResultGroup& g, const std::string& prefix, double scale = 1.0,

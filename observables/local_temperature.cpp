@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "libgran/plugins/observable.hpp"
+#include "observables/block_clock.hpp"
 
 namespace gran {
 namespace {
@@ -88,8 +89,9 @@ class LocalTemperature final : public Observable<D> {
         if (!ctx.measuring) return;
         if (samples_ == 0) base_ = base_position(ctx);
         const auto& p = ctx.engine.particles();
-        const std::size_t expected = std::max<std::size_t>(ctx.expected_samples, 1);
-        const std::size_t block = std::min(nblocks_ - 1, samples_ * nblocks_ / expected);
+        const BlockClock::Place place =
+            clock_.place(samples_, ctx.expected_samples, ctx.open_ended);
+        const std::size_t block = place.block;
         ++samples_in_block_[block];
         ++samples_;
         std::size_t phase = 0;
@@ -123,6 +125,12 @@ class LocalTemperature final : public Observable<D> {
                 s[3 + D + a] += sp.mass * p.v[i][a] * p.v[i][a];
             }
         }
+        if (place.merge_after) {
+            merge_block_pairs(sums_, nblocks_);
+            merge_block_pairs(plain_, nblocks_);
+            merge_block_pairs(plain_slab_, nblocks_);
+            merge_block_pairs(samples_in_block_, nblocks_);
+        }
     }
 
     void write(ResultGroup& g) const override {
@@ -146,6 +154,7 @@ class LocalTemperature final : public Observable<D> {
         ar.io(plain_);
         ar.io(plain_slab_);
         ar.io(samples_in_block_);
+        clock_.checkpoint(ar);
     }
 
   private:
@@ -364,6 +373,7 @@ class LocalTemperature final : public Observable<D> {
 
     const SpeciesTable& table_;
     std::size_t nblocks_, phases_;
+    BlockClock clock_{nblocks_};
     double min_occupancy_, peak_velocity_, period_;
     int axis_ = D - 1;
     double length_ = 1, width_ = 1, cross_section_ = 1, base_ = 0;

@@ -15,6 +15,7 @@
 
 #include "libgran/core/kinetic_theory.hpp"
 #include "libgran/plugins/observable.hpp"
+#include "observables/block_clock.hpp"
 #include "observables/local_flow.hpp"
 
 namespace gran {
@@ -107,14 +108,14 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
     void sample(const SampleContext<D>& ctx) override {
         if (!ctx.measuring) return;
         const auto& p = ctx.engine.particles();
-        const std::size_t expected = std::max<std::size_t>(ctx.expected_samples, 1);
-        const std::size_t block = std::min(nblocks_ - 1, samples_ * nblocks_ / expected);
+        const BlockClock::Place place =
+            clock_.place(samples_, ctx.expected_samples, ctx.open_ended);
+        const std::size_t block = place.block;
         // Collision fluxes since the previous sample belong to this sample's block.
         if (started_) block_time_[block] += ctx.time - last_time_;
         started_ = true;
         last_time_ = ctx.time;
         ++samples_;
-        current_block_ = std::min(nblocks_ - 1, samples_ * nblocks_ / expected);
         ++samples_in_block_[block];
         const double lo = 0.5 * (1 - window_) * length_, hi = 0.5 * (1 + window_) * length_;
         if (local_) flow_.compute(p, table_);
@@ -127,6 +128,14 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
             add(block, bin, s, p, i, ctx);
             if (y >= lo && y < hi) add(block, bins_, s, p, i, ctx);
         }
+        if (place.merge_after) {
+            merge_block_pairs(sums_, nblocks_);
+            merge_block_pairs(samples_in_block_, nblocks_);
+            merge_block_pairs(coll_, nblocks_);
+            merge_block_pairs(block_time_, nblocks_);
+        }
+        // The collisions until the next sample go to that sample's block.
+        current_block_ = clock_.next_block(samples_, ctx.expected_samples, ctx.open_ended);
     }
 
     void write(ResultGroup& g) const override {
@@ -158,6 +167,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
         ar.io(last_time_);
         ar.io(started_);
         ar.io(current_block_);
+        clock_.checkpoint(ar);
         ar.io(samples_);
     }
 
@@ -413,6 +423,7 @@ class Profiles final : public Observable<D>, public CollisionSink<D> {
     const SpeciesTable& table_;
     SceneInfo info_;  // the nominal restitution of each species pair, for the Enskog pressure
     std::size_t bins_, nblocks_;
+    BlockClock clock_{nblocks_};
     double window_;
     int axis_ = 1;
     double length_ = 1, cross_section_ = 1;

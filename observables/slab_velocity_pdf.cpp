@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "libgran/plugins/observable.hpp"
+#include "observables/block_clock.hpp"
 #include "observables/blocked_histogram.hpp"
 
 namespace gran {
@@ -40,8 +41,9 @@ class SlabVelocityPdf final : public Observable<D> {
         if (!ctx.measuring) return;
         const auto& p = ctx.engine.particles();
         if (!initialised_) init(p);
-        const std::size_t block = std::min(
-            nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
+        const BlockClock::Place place =
+            clock_.place(samples_, ctx.expected_samples, ctx.open_ended);
+        const std::size_t block = place.block;
         ++samples_;
         for (std::size_t i = 0; i < p.size(); ++i) {
             double y = p.r[i][axis_];
@@ -58,6 +60,9 @@ class SlabVelocityPdf final : public Observable<D> {
                     c.m4 += v * v * v * v;
                 }
             }
+        }
+        if (place.merge_after) {
+            for (Cell& c : cells_) c.hist.merge_pairs();
         }
     }
 
@@ -89,6 +94,7 @@ class SlabVelocityPdf final : public Observable<D> {
         ar.io(initialised_);
         ar.io(samples_);
         ar.io(cells_);
+        clock_.checkpoint(ar);
     }
 
   private:
@@ -141,6 +147,7 @@ class SlabVelocityPdf final : public Observable<D> {
     unsigned bins_;
     double range_;
     std::size_t nblocks_;
+    BlockClock clock_{nblocks_};
     int axis_ = 1;
     double length_ = 1;
     bool initialised_ = false;

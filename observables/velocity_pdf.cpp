@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "libgran/plugins/observable.hpp"
+#include "observables/block_clock.hpp"
 #include "observables/blocked_histogram.hpp"
 #include "observables/local_flow.hpp"
 
@@ -40,8 +41,9 @@ class VelocityPdf final : public Observable<D> {
         const auto& p = ctx.engine.particles();
         const std::size_t ns = table_.size();
         if (!initialised_) init(ctx);
-        const std::size_t block = std::min(
-            nblocks_ - 1, samples_ * nblocks_ / std::max<std::size_t>(ctx.expected_samples, 1));
+        const BlockClock::Place place =
+            clock_.place(samples_, ctx.expected_samples, ctx.open_ended);
+        const std::size_t block = place.block;
         ++samples_;
         const Vec<D> u = centre_of_mass_velocity<D>(p, table_);
         if (local_) flow_.compute(p, table_);
@@ -97,6 +99,14 @@ class VelocityPdf final : public Observable<D> {
                 per_[s].c4[a].push(m4[s][a] / used[s]);
             }
         }
+        if (place.merge_after) {
+            for (auto& q : per_) {
+                for (int a = 0; a < D; ++a) {
+                    q.raw[a].merge_pairs();
+                    q.scaled[a].merge_pairs();
+                }
+            }
+        }
     }
 
     void write(ResultGroup& g) const override {
@@ -123,6 +133,7 @@ class VelocityPdf final : public Observable<D> {
         ar.io(initialised_);
         ar.io(samples_);
         ar.io(per_);
+        clock_.checkpoint(ar);
     }
 
   private:
@@ -200,6 +211,7 @@ class VelocityPdf final : public Observable<D> {
     unsigned bins_;
     double range_;
     std::size_t nblocks_;
+    BlockClock clock_{nblocks_};
     double raw_range_;
     bool initialised_ = false;
     std::size_t samples_ = 0;

@@ -408,10 +408,49 @@ void print_cost(const gran::Scene& scene) {
     std::cout << "\n";
 }
 
-// The run's result and exit status: 0 completed, 1 stopped by the watchdog, 3 interrupted.
+// A run with a target: the first look's forecast against what it cost, per quantity and in all.
+// A summary number: {value: x, unit: ...} or a plain x.
+double summary_number(const YAML::Node& n) {
+    return n.IsMap() ? n["value"].as<double>() : n.as<double>();
+}
+
+void print_target(const YAML::Node& summary) {
+    const YAML::Node t = summary["target"];
+    if (!t) return;
+    std::cout << fmt::format("target: {}", t["status"].as<std::string>());
+    if (t["reason"]) std::cout << " (" << t["reason"].as<std::string>() << ")";
+    std::cout << "\n";
+    for (auto it = t["quantities"].begin(); it != t["quantities"].end(); ++it) {
+        const YAML::Node q = it->second;
+        if (!q["error"]) continue;
+        std::cout << fmt::format("  {} = {:.6g} +- {:.3g} (target {:.3g}, n_eff {})",
+                                 it->first.as<std::string>(), summary_number(q["value"]),
+                                 summary_number(q["error"]), summary_number(q["target"]),
+                                 q["n_eff"] ? fmt::format("{:.0f}", summary_number(q["n_eff"]))
+                                            : std::string("unknown: fixed blocks"));
+        if (q["forecast_cpu_seconds"])
+            std::cout << fmt::format("; reached after about {:.3g} CPU s (+-{:.0f}%)",
+                                     summary_number(q["forecast_cpu_seconds"]),
+                                     100 * summary_number(q["forecast_uncertainty"]));
+        std::cout << "\n";
+    }
+    if (const YAML::Node f = t["forecast"])
+        std::cout << fmt::format(
+            "  forecast (first look): {:.3g} CPU s in all ({:.3g}-{:.3g}); spent {:.3g}\n",
+            summary_number(f["cpu_seconds"]), summary_number(f["cpu_seconds_low"]),
+            summary_number(f["cpu_seconds_high"]), summary_number(t["cpu_seconds"]));
+}
+
+// The run's result and exit status: 0 completed, 1 stopped by the watchdog, 3 interrupted, 2 a
+// target that names no quantity of the run's summary.
 int report_run(const gran::RunReport& rep) {
     print_headline(rep.summary);
+    print_target(rep.summary);
     std::cout << fmt::format("result: {}\nsummary: {}\n", rep.output, rep.summary_file);
+    if (rep.target_status == "unknown_quantity") {
+        std::cerr << "gran: error: " << rep.target_reason << "\n";
+        return 2;
+    }
     if (!rep.error.empty()) {
         // The watchdog stopped the run: a failure (exit 1), with what was measured written.
         std::cerr << "gran: error: " << rep.error << "\n";
@@ -473,6 +512,30 @@ int out_of_memory(const char* stage, const gran::Scene* scene) {
     return 1;
 }
 
+// `gran check` of a scene with run.target_error: a pilot run to the first look (equilibration and
+// the minimum measurement), in a temporary folder, and its forecast of what the targets cost.
+int run_pilot(const gran::Scene& scene) {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     fmt::format("gran-pilot-{}", static_cast<long>(getpid()));
+    std::filesystem::create_directories(dir);
+    gran::RunOptions opt;
+    opt.output = (dir / "pilot.h5").string();
+    opt.progress = false;
+    opt.pilot = true;
+    opt.interrupt = &g_interrupt;
+    std::cout << "pilot: equilibration and the first look of the measurement, to forecast the "
+                 "targets' cost\n";
+    const gran::RunReport rep = gran::run_scene(scene, opt);
+    print_target(rep.summary);
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+    if (rep.target_status == "unknown_quantity") {
+        std::cerr << "gran: error: " << rep.target_reason << "\n";
+        return 2;
+    }
+    return rep.completed ? 0 : 3;
+}
+
 // `gran run` and `gran check` (check_only).
 int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
     const char* stage = "reading the scene (species, contacts, plugins)";
@@ -497,6 +560,7 @@ int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
                                      cl.scene_file, scene.dimension, scene.species.total_count(),
                                      scene.packing_fraction);
             print_cost(scene);
+            if (scene.target.active()) return run_pilot(scene);
             return 0;
         }
         const gran::RunOptions opt = run_options(cl, argc, argv);

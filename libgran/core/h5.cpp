@@ -304,6 +304,14 @@ File File::create(const std::string& path) {
     return File(own(id, "create file", "'" + path + "'"), path);
 }
 
+File File::in_memory(const std::string& name) {
+    silence_hdf5_errors();
+    detail::Handle fapl = own(H5Pcreate(H5P_FILE_ACCESS), "create file access list for", name);
+    check(H5Pset_fapl_core(fapl.get(), 1 << 20, 0), "use the core driver for", name);
+    const hid_t id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+    return File(own(id, "create in-memory file", "'" + name + "'"), name);
+}
+
 File File::open_read(const std::string& path) {
     silence_hdf5_errors();
     const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);

@@ -61,6 +61,9 @@ class File {
     static File create(const std::string& path);      // truncates an existing file
     static File open_read(const std::string& path);   // read-only
     static File open_write(const std::string& path);  // read and write an existing file
+    // A file that lives in memory only (HDF5's core driver, no backing store): `name` names it
+    // in messages. For results looked at and thrown away (a run's error bars mid-run).
+    static File in_memory(const std::string& name);
 
     File(File&&) noexcept = default;
     File& operator=(File&&) noexcept = default;

@@ -26,6 +26,9 @@ struct SampleContext {
     const EngineView<D>& engine;       // either engine (libgran/engine_view.hpp)
     const SpeciesTable& species;
     std::int64_t step = 0;  // the engine's events or steps so far (H5MD `step` of time series)
+    // The measurement has no fixed length (a run with a target): expected_samples is that of the
+    // next look only (observables/block_clock.hpp).
+    bool open_ended = false;
 };
 
 template <int D>

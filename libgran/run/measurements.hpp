@@ -2,6 +2,8 @@
 // What a Simulation has measured so far, written as a result file at any moment: the Python
 // module's `Simulation.results()` reads observables mid-run through the same reader as a finished
 // run's file (python/gran/results.py).
+#include <yaml-cpp/yaml.h>
+
 #include <string>
 
 #include "libgran/run/simulation.hpp"
@@ -13,5 +15,11 @@ namespace gran {
 // YAML text (the `observables` and `drivers` sections of a run's summary). No /performance: the
 // run is not over. h5::Error naming the path when the file cannot be written.
 std::string write_measurements(const Simulation& sim, const std::string& path);
+
+// The `observables` section of the summary the observables would write now, without a file (an
+// in-memory HDF5 file, discarded): how a run with a target looks at its error bars mid-run.
+// Observables' warnings are silenced while they write (they speak at the end of the run).
+template <int D>
+YAML::Node observables_summary_now(const Scene& sc, const SimulationState<D>& st);
 
 }  // namespace gran

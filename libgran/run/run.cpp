@@ -15,10 +15,12 @@
 #include "libgran/run/frames.hpp"
 #include "libgran/run/headline.hpp"
 #include "libgran/run/initial_state.hpp"
+#include "libgran/run/measurements.hpp"
 #include "libgran/run/progress.hpp"
 #include "libgran/run/result_file.hpp"
 #include "libgran/run/result_sink.hpp"
 #include "libgran/run/simulation.hpp"
+#include "libgran/run/target_run.hpp"
 #include "libgran/run/trajectory.hpp"
 #include "libgran/run/watchdog.hpp"
 
@@ -78,7 +80,9 @@ class ScheduleLoop {
           progress_(opt.progress, opt.terminal, sc.progress_interval, runner_.work_unit()),
           plan_(std::move(plan)),
           cpu0_(cpu0),
-          last_checkpoint_(std::chrono::steady_clock::now()) {
+          last_checkpoint_(std::chrono::steady_clock::now()),
+          target_(sc.target, sc.schedule.measurement,
+                  sc.schedule.unit == ScheduleUnit::Time ? "time" : "collisions per particle") {
         out_.measured_energy.reserve(expected_samples_);
     }
 
@@ -104,6 +108,7 @@ class ScheduleLoop {
     double checkpoint_seconds() const { return checkpoint_seconds_; }
     std::uint64_t resumes() const { return resumes_; }
     FrameWriter& frames() { return frames_; }
+    const TargetTracker& target() const { return target_; }
 
     // The whole state of the run: the schedule's, the frames', the engine's, every driver's and
     // every observable's (saving or loading, libgran/core/state_archive.hpp).
@@ -129,6 +134,11 @@ class ScheduleLoop {
             prior_cpu_ = cpu_time;
             ++resumes_;
         }
+        if (target_.active()) {
+            target_.checkpoint(ar);
+            ar.io(cpu_measure_start_);
+            ar.io(expected_samples_);
+        }
         ar.io(frames_);
         ar.io(runner_);
         for (auto& d : st_.drivers) ar.io(*d);
@@ -140,18 +150,26 @@ class ScheduleLoop {
         return static_cast<std::size_t>(std::floor(length / sc_.schedule.sample_interval + 1e-9));
     }
 
+    void start_phase(bool measuring) {
+        if (pos_.started) return;
+        pos_.started = true;
+        pos_.t0 = runner_.now();
+        pos_.c0 = runner_.collisions();
+        if (measuring) {
+            out_.t_measure_start = pos_.t0;
+            out_.coll_measure_start = pos_.c0;
+            cpu_measure_start_ = cpu();
+        }
+    }
+
     void run_phase(bool measuring) {
         const auto& s = sc_.schedule;
         const double length = measuring ? s.measurement : s.equilibration;
         if (length <= 0) return;
-        if (!pos_.started) {
-            pos_.started = true;
-            pos_.t0 = runner_.now();
-            pos_.c0 = runner_.collisions();
-            if (measuring) {
-                out_.t_measure_start = pos_.t0;
-                out_.coll_measure_start = pos_.c0;
-            }
+        start_phase(measuring);
+        if (measuring && target_.active()) {
+            measure_to_target();
+            return;
         }
         const std::size_t nsamples = samples_in(length);
         while (pos_.next_sample <= nsamples) {
@@ -167,6 +185,52 @@ class ScheduleLoop {
         }
     }
 
+    // The measurement of a run with a target (run.target_error): samples up to each look,
+    // the look (libgran/run/target_run.hpp), on until the targets are reached, an error stops
+    // falling, or max_cost is spent (checked after every sample and chunk of work).
+    void measure_to_target() {
+        const auto& s = sc_.schedule;
+        while (true) {
+            const double look = target_.next_look_length();
+            const std::size_t nsamples = samples_in(look);
+            expected_samples_ = std::max(expected_samples_, nsamples);
+            while (pos_.next_sample <= nsamples) {
+                if (!advance_to(pos_.t0, pos_.c0, pos_.next_sample, true)) {
+                    if (capped_) {
+                        target_.stopped_at_cap(observables_summary_now<D>(sc_, st_),
+                                               measured_length(), cpu(), cpu_measuring());
+                    } else {
+                        target_.stopped(out_.status());
+                    }
+                    return;
+                }
+                sample(true);
+                progress_.update("measurement (to the targets)",
+                                 (s.equilibration + measured_length()) / (s.equilibration + look),
+                                 runner_.work());
+                ++pos_.next_sample;
+                checkpoint_if_due(std::chrono::steady_clock::now());
+                if (target_.over_cap(cpu(), runner_.work())) {
+                    target_.stopped_at_cap(observables_summary_now<D>(sc_, st_), measured_length(),
+                                           cpu(), cpu_measuring());
+                    return;
+                }
+            }
+            if (target_.take_look(observables_summary_now<D>(sc_, st_), measured_length(), cpu(),
+                                  cpu_measuring()) ||
+                opt_.pilot)
+                return;
+        }
+    }
+
+    // The measurement so far, in schedule units.
+    double measured_length() const {
+        if (sc_.schedule.unit == ScheduleUnit::Time) return runner_.now() - out_.t_measure_start;
+        const double n = double(runner_.view().particles().size());
+        return 2.0 * double(runner_.collisions() - out_.coll_measure_start) / std::max(n, 1.0);
+    }
+    double cpu_measuring() const { return cpu() - cpu_measure_start_; }
+
     // To the k-th sample of a phase that started at time t0 with c0 collisions; false when the
     // run stops there (interrupt, no more events, watchdog). An interrupted run writes a
     // checkpoint first: it can be resumed.
@@ -179,6 +243,7 @@ class ScheduleLoop {
         const std::uint64_t c_target =
             by_time ? UINT64_MAX : c0 + static_cast<std::uint64_t>(std::llround(at * n / 2.0));
         const Advance adv = advance_in_chunks(t_target, c_target, t0, c0, measuring);
+        if (capped_) return false;  // max_cost spent mid-interval (a run with a target)
         if (adv == Advance::Interrupted) save_checkpoint();
         out_.interrupted = adv == Advance::Interrupted;
         out_.stalled = adv == Advance::Stalled || adv == Advance::Watchdog;
@@ -220,6 +285,10 @@ class ScheduleLoop {
                              (before + std::min(done, length)) / (s.equilibration + s.measurement),
                              runner_.work());
             checkpoint_if_due(end);
+            if (measuring && target_.active() && target_.over_cap(cpu(), runner_.work())) {
+                capped_ = true;
+                return Advance::Reached;
+            }
         }
     }
 
@@ -254,8 +323,10 @@ class ScheduleLoop {
 
     void sample(bool measuring) {
         const EngineView<D>& view = runner_.view();
-        SampleContext<D> ctx{runner_.now(), measuring,   expected_samples_,
-                             view,          sc_.species, std::int64_t(runner_.work())};
+        SampleContext<D> ctx{runner_.now(),     measuring,
+                             expected_samples_, view,
+                             sc_.species,       std::int64_t(runner_.work()),
+                             target_.active()};
         for (auto& o : st_.observables) o->sample(ctx);
         if (!measuring) return;
         ++out_.samples;
@@ -284,6 +355,9 @@ class ScheduleLoop {
     std::chrono::steady_clock::time_point last_checkpoint_;
     std::uint64_t chunk_ = 1024;  // engine work per advance call (advance_in_chunks)
     Frame frame_;                 // one frame, reused
+    TargetTracker target_;        // run.target_error (inactive without one)
+    double cpu_measure_start_ = 0;
+    bool capped_ = false;  // max_cost was spent between two samples
 };
 
 // /observables, /drivers and /performance (with the summary's observables, drivers, performance).
@@ -372,6 +446,10 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
                      runner.work_unit());
     write_summary_header(sink.summary(), sc, opt.output, out.status(), out.watchdog_stop, n);
     write_results<D>(sink.root(), sc, runner, st.drivers, st.observables, out, totals);
+    if (loop.target().active()) {
+        ResultGroup tg = sink.root().group("target");
+        loop.target().write(tg, totals.cpu_time, runner.work(), runner.work_unit());
+    }
     if (const YAML::Node h = headline(sink.summary()); h.size() > 0) sink.summary()["headline"] = h;
     for (const auto& q : sink.unreliable())
         spdlog::warn("{}: the value or its error bar is not finite; status: unreliable", q);
@@ -393,6 +471,8 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     rep.output = sink.written();
     rep.summary_file = sink.summary_file();
     rep.summary = sink.summary();
+    rep.target_status = loop.target().outcome().status;
+    rep.target_reason = loop.target().outcome().reason;
     return rep;
 }
 

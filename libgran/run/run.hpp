@@ -23,6 +23,9 @@ struct RunOptions {
     // Called after every measurement sample with the samples taken and the simulated time (the
     // Python module's callbacks); may set *interrupt to stop the run.
     std::function<void(std::size_t samples, double time)> on_sample;
+    // A run with a target stops after its first look (the pilot of `gran check`: what reaching
+    // the targets will cost).
+    bool pilot = false;
 };
 
 struct RunReport {
@@ -31,6 +34,9 @@ struct RunReport {
     std::string output;
     std::string summary_file;
     YAML::Node summary;
+    // A run with a target: its status (TargetOutcome::status) and why; empty without a target.
+    std::string target_status;
+    std::string target_reason;
 };
 
 // Everything short of running: places the particles (throws SceneError naming the box on

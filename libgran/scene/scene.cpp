@@ -156,6 +156,40 @@ void read_engine(const YAML::Node& root, const Where& top, Scene& sc, YAML::Node
     res["engine"] = r;
 }
 
+// Each run.target_error quantity names an observable of the scene ("observables.<name>....").
+// Whether the quantity itself exists is known when the observable first writes (the first look).
+void check_target_names(const Scene& sc) {
+    for (const TargetError& t : sc.target.targets) {
+        const std::string rest = t.quantity.substr(std::string("observables.").size());
+        const std::string name = rest.substr(0, rest.find('.'));
+        const auto it = std::find_if(sc.observables.begin(), sc.observables.end(),
+                                     [&](const PluginEntry& o) { return o.name == name; });
+        if (it != sc.observables.end() && rest.find('.') != std::string::npos) {
+            // Free cooling (no driver, dissipative contacts) has no steady state: whole-run
+            // averages keep drifting while their error bars shrink; only the scaling state of
+            // the cooling state is a steady quantity.
+            const bool cooling = !sc.info.driven && std::any_of(sc.info.nominal_restitution.begin(),
+                                                                sc.info.nominal_restitution.end(),
+                                                                [](double e) { return e < 1; });
+            if (cooling && it->type != "cooling_state") {
+                throw SceneError(fmt::format(
+                    "{}: free cooling has no steady state: '{}' averages the whole run, "
+                    "transient included, and a longer run changes what it measures, not only "
+                    "its error; give a target on the cooling_state observable's scaling_state "
+                    "quantities instead",
+                    t.location, t.quantity));
+            }
+            continue;
+        }
+        std::vector<std::string> names;
+        for (const PluginEntry& o : sc.observables) names.push_back(o.name);
+        throw SceneError(
+            fmt::format("{}: '{}' is not a quantity of an observable of this scene: expected "
+                        "observables.<name>.<quantity> with <name> one of [{}]",
+                        t.location, t.quantity, fmt::join(names, ", ")));
+    }
+}
+
 void read_run(const YAML::Node& root, const Where& top, Scene& sc, YAML::Node& res) {
     Params rp = read_params(child(root, "run"), run_schema(), top.child("run"));
     sc.schedule.unit =
@@ -180,6 +214,8 @@ void read_run(const YAML::Node& root, const Where& top, Scene& sc, YAML::Node& r
     Params cp = read_params(child(child(root, "run"), "checkpoint"), checkpoint_schema(),
                             top.child("run").child("checkpoint"));
     sc.checkpoint_interval = cp.real("interval");
+    sc.target = read_accuracy_target(child(root, "run"), top.child("run"),
+                                     sc.engine->binary_collisions ? "events" : "steps");
     res["run"] = rp.resolved();
     res["run"]["watchdog"] = wp.resolved();
     res["run"]["checkpoint"] = cp.resolved();
@@ -268,6 +304,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& file) {
     } else {
         check_plugins<3>(sc, root, top, res);
     }
+    check_target_names(sc);
     sc.resolved = res;
     return sc;
 }

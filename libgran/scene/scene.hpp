@@ -16,6 +16,7 @@
 #include "libgran/plugins/law.hpp"
 #include "libgran/plugins/run_cost.hpp"
 #include "libgran/plugins/scene_info.hpp"
+#include "libgran/scene/accuracy_target.hpp"
 #include "libgran/scene/schedule.hpp"
 
 namespace gran {
@@ -51,6 +52,7 @@ struct Scene {
     const EnginePlugin* engine = nullptr;  // engine.type
     PluginEntry engine_settings;           // the `engine` section, validated by its schema
     Schedule schedule;
+    AccuracyTarget target;      // run.target_error, max_cost, min_effective_samples
     Params run_settings;        // the `run` section, for errors at its keys
     WatchdogSettings watchdog;  // run.watchdog
     std::vector<PluginEntry> drivers;

@@ -97,6 +97,18 @@ Schema run_schema() {
                  1e308, true),
             real("progress_interval", "10", "s",
                  "seconds between progress log lines when not on a terminal", 0, 1e308, true),
+            list_of(ParamType::Map, "target_error",
+                    "measure until each named summary quantity's error bar is below its target: "
+                    "{observables.<name>.<quantity>: 0.002 or 1%}; `measurement` is then the "
+                    "shortest measurement (see the run section's text)"),
+            optional(text("max_cost", "",
+                          "with target_error: stop at this cost if the targets are not reached: "
+                          "CPU seconds (600, '600 s') or engine work ('1e9 events', '1e8 "
+                          "steps')")),
+            integer("min_effective_samples", "20",
+                    "with target_error: effective samples (n_eff) an error bar needs before a "
+                    "target counts as reached",
+                    2, 1e12),
             list_of(ParamType::Map, "watchdog",
                     "stops a run that stalls or produces NaN (see section run.watchdog)"),
             list_of(ParamType::Map, "checkpoint",
@@ -196,7 +208,27 @@ on `event_driven`).)md";
 const char* const kRun =
     R"md(
 `equilibration`, `measurement` and `sample_interval` are in `unit`; the dem engine schedules by
-time.)md";
+time.
+
+**Runs with a target** (`target_error`): instead of a fixed length, the run measures until every
+named quantity's error bar (the blocking or jackknife error of its summary, with its effective
+samples n_eff) is below its target and has at least `min_effective_samples` effective samples,
+or until `max_cost` is spent. It looks at the error bars after `measurement` and then each time
+the measurement has grown by half again (1.5x, 2.25x, ...): a handful of geometrically spaced
+looks keeps the bias of stopping on a lucky error small. After the first look it prints, per
+quantity, the forecast CPU time to reach its target; `gran check` runs that first look as a
+pilot and prints the same forecast. Quantities are named as in a run summary and a study table,
+e.g.
+
+    run:
+      measurement: 100          # the first look
+      target_error: {observables.temperatures.ratios.light_over_heavy.gamma: 0.002,
+                     observables.temperatures.T_mixture: 1%}
+      max_cost: 600 s
+
+The result's summary has a `target` section: each quantity's target, the error reached, whether
+it was met, the status (`reached` or `target_not_reached`, and why), the cost, and the forecast
+against the cost spent (docs/choosing-speed-or-accuracy.md, "Runs with a target").)md";
 
 const char* const kWatchdog =
     R"md(

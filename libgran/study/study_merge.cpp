@@ -11,6 +11,7 @@
 #include <set>
 
 #include "libgran/core/h5.hpp"
+#include "libgran/run/summary_numbers.hpp"
 #include "libgran/study/study_fit.hpp"
 #include "libgran/study/study_pool.hpp"
 #include "libgran/study/study_tradeoff.hpp"
@@ -31,30 +32,11 @@ RunFiles run_files(const Study& st, const std::string& outdir) {
 
 namespace {
 
-// Every number in a run summary: estimates {value, error, ...}, values with a unit
-// {value, unit} (error NaN) and plain counters, keyed by their dotted path
-// ("observables.profiles.middle/ratios/light_over_heavy/gamma", "performance.cpu_time").
+// Every number in a run summary (value and error, NaN: none) by its dotted path
+// (libgran/run/summary_numbers.hpp).
 void flatten(const YAML::Node& n, const std::string& prefix,
              std::map<std::string, std::pair<double, double>>& out) {
-    if (n.IsMap()) {
-        if (n["value"] && n["value"].IsScalar()) {
-            try {
-                out[prefix] = {n["value"].as<double>(),
-                               n["error"] ? n["error"].as<double>() : std::nan("")};
-            } catch (const YAML::Exception&) {
-            }
-            return;
-        }
-        for (auto it = n.begin(); it != n.end(); ++it) {
-            const std::string k = it->first.as<std::string>();
-            flatten(it->second, prefix.empty() ? k : prefix + "." + k, out);
-        }
-    } else if (n.IsScalar()) {
-        try {
-            out[prefix] = {n.as<double>(), std::nan("")};
-        } catch (const YAML::Exception&) {
-        }
-    }
+    for (const auto& [name, x] : summary_numbers(n, prefix)) out[name] = {x.value, x.error};
 }
 
 struct Table {
@@ -74,6 +56,8 @@ Table summary_table(const Study& st, const std::vector<std::string>& summaries,
             flatten(s["observables"], "observables", t.rows[i]);
             flatten(s["drivers"], "drivers", t.rows[i]);
             flatten(s["performance"], "performance", t.rows[i]);
+            // Runs with a target: the error reached, the cost, the forecast against it.
+            if (s["target"]) flatten(s["target"], "target", t.rows[i]);
         } catch (const YAML::Exception& e) {
             spdlog::warn("study: cannot read {}: {}", summaries[i], e.what());
         }

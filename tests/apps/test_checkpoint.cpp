@@ -5,6 +5,7 @@
 // spheres, event-driven) and with friction and contact history (DEM); every driver and observable
 // is in one of the scenes.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <chrono>
@@ -142,10 +143,30 @@ TEST_F(Checkpoint, InterruptedRunWithThermalSawtoothAndStaticWallsResumesBitIden
     EXPECT_EQ(performance("resumes"), 1);
 }
 
+// A run with a target (run.target_error) interrupted between its looks and resumed stops at the
+// same look with the same observables as a run never interrupted: the looks, the target's state
+// and the open-ended blocks of the velocity distributions are in the checkpoint.
+TEST_F(Checkpoint, InterruptedRunWithATargetStopsAtTheSameLookAsAnUninterruptedOne) {
+    run_reference("target_event_driven.yaml");
+    if (HasFatalFailure()) return;
+    fs::create_directories(dir_ / "run");
+    interrupt_then_resume("target_event_driven.yaml", path("run/r.h5"), path("run/log"),
+                          0.1 + 0.3 * reference_s_);
+    expect_identical_to_reference();
+    EXPECT_EQ(performance("resumes"), 1);
+    const YAML::Node ref = YAML::LoadFile(path("ref/r.summary.yaml"))["target"];
+    const YAML::Node run = YAML::LoadFile(path("run/r.summary.yaml"))["target"];
+    EXPECT_EQ(run["status"].as<std::string>(), "reached");
+    EXPECT_EQ(run["looks"].as<int>(), ref["looks"].as<int>());
+    EXPECT_GE(ref["looks"].as<int>(), 4);
+    EXPECT_EQ(run["measured"]["value"].as<double>(), ref["measured"]["value"].as<double>());
+}
+
 // The threads of a dem run change no bit (docs/performance.md), so a resume may ask for another
 // number: interrupted with one thread, resumed with engine.threads=2 and the scene given beside
 // the checkpoint. (This scene is smaller than one thread's share, so it still runs on one; the
-// split itself across a checkpoint is DemThreads.CheckpointOfOneThreadContinuesBitIdenticallyOnTwo.)
+// split itself across a checkpoint is
+// DemThreads.CheckpointOfOneThreadContinuesBitIdenticallyOnTwo.)
 TEST_F(Checkpoint, DemRunResumesBitIdenticallyWithAnotherThreadCount) {
     run_reference("vibrated_frictional_dem.yaml");
     if (HasFatalFailure()) return;
