@@ -93,7 +93,7 @@ reproduce-mcnamara-falcon-2005: build
 # cores; completed runs are reused, then about 6 s). Writes results/bhateja-2016/comparison.csv
 # (paper vs measured, studies/bhateja-2016/analysis.py) and figures/*.png (figures.py).
 BH2016_STUDIES := rest-2d rest-3d sweep-2d sweep-3d lid-g0 engines-2d sensitivity-3d amplitude-2d \
-  parameters-2d profiles-3d
+  parameters-2d profiles-3d ct-scan-3d fig5 channel-full-3d
 BH2016_OUT ?= results/bhateja-2016
 reproduce-bhateja-2016: build
 	for s in $(BH2016_STUDIES); do \
