@@ -82,6 +82,8 @@ class LocalTemperature final : public Observable<D> {
         sums_.assign(nblocks_ * slabs_ * phases_ * stride_, 0.0);
         plain_.assign(nblocks_ * (D + 1), 0.0);
         plain_slab_.assign(nblocks_ * slabs_ * D, 0.0);
+        instant_slab_.assign(nblocks_ * slabs_ * D, 0.0);
+        instant_.assign(slabs_ * (2 * D + 1), 0.0);
         samples_in_block_.assign(nblocks_, 0);
     }
 
@@ -117,6 +119,12 @@ class LocalTemperature final : public Observable<D> {
             double* ps = &plain_slab_[(block * slabs_ + slab) * D];
             for (int a = 0; a < D; ++a)
                 ps[a] += sp.mass * (p.v[i][a] - vcm[a]) * (p.v[i][a] - vcm[a]);
+            double* in = &instant_[slab * (2 * D + 1)];
+            in[0] += sp.mass;
+            for (int a = 0; a < D; ++a) {
+                in[1 + a] += sp.mass * p.v[i][a];
+                in[1 + D + a] += sp.mass * p.v[i][a] * p.v[i][a];
+            }
             s[0] += 1;
             s[1] += vd * std::pow(sp.diameter, D);
             s[2] += sp.mass;
@@ -125,7 +133,19 @@ class LocalTemperature final : public Observable<D> {
                 s[3 + D + a] += sp.mass * p.v[i][a] * p.v[i][a];
             }
         }
+        // About the slab's mean velocity at this sample: sum m (v - w)^2 = sum m v^2 - (sum m v)^2
+        // / sum m (a slab of one grain has none).
+        for (std::size_t j = 0; j < slabs_; ++j) {
+            double* in = &instant_[j * (2 * D + 1)];
+            if (in[0] > 0) {
+                double* out = &instant_slab_[(block * slabs_ + j) * D];
+                for (int a = 0; a < D; ++a)
+                    out[a] += std::max(0.0, in[1 + D + a] - in[1 + a] * in[1 + a] / in[0]);
+            }
+            std::fill(in, in + 2 * D + 1, 0.0);
+        }
         if (place.merge_after) {
+            merge_block_pairs(instant_slab_, nblocks_);
             merge_block_pairs(sums_, nblocks_);
             merge_block_pairs(plain_, nblocks_);
             merge_block_pairs(plain_slab_, nblocks_);
@@ -153,6 +173,7 @@ class LocalTemperature final : public Observable<D> {
         ar.io(sums_);
         ar.io(plain_);
         ar.io(plain_slab_);
+        ar.io(instant_slab_);
         ar.io(samples_in_block_);
         clock_.checkpoint(ar);
     }
@@ -166,8 +187,12 @@ class LocalTemperature final : public Observable<D> {
             return plain_sums[D] > 0 ? 0.5 * plain_sums[std::size_t(a)] / plain_sums[D] : kNaN;
         }
         std::vector<double> count, volume;
-        std::vector<std::array<double, D>> sum_mc2;    // per slab: sum m c_a^2 about u(z, phase)
-        std::vector<std::array<double, D>> plain_mc2;  // per slab: sum m (v_a - V_a)^2
+        std::vector<std::array<double, D>> sum_mc2;      // per slab: sum m c_a^2 about u(z, phase)
+        std::vector<std::array<double, D>> plain_mc2;    // per slab: sum m (v_a - V_a)^2
+        std::vector<std::array<double, D>> instant_mc2;  // sum m (v_a - w_a(z, t))^2
+        double instant_local(std::size_t j, int a) const {
+            return count[j] > 0 ? 0.5 * instant_mc2[j][std::size_t(a)] / count[j] : kNaN;
+        }
         double plain_local(std::size_t j, int a) const {
             return count[j] > 0 ? 0.5 * plain_mc2[j][std::size_t(a)] / count[j] : kNaN;
         }
@@ -202,6 +227,7 @@ class LocalTemperature final : public Observable<D> {
         t.volume.assign(slabs_, 0);
         t.sum_mc2.assign(slabs_, std::array<double, D>{});
         t.plain_mc2.assign(slabs_, std::array<double, D>{});
+        t.instant_mc2.assign(slabs_, std::array<double, D>{});
         std::vector<double> cell(stride_);
         for (std::size_t b = 0; b < nblocks_; ++b) {
             if (b == skip) continue;
@@ -209,9 +235,12 @@ class LocalTemperature final : public Observable<D> {
             for (int k = 0; k <= D; ++k)
                 t.plain_sums[std::size_t(k)] += plain_[b * (D + 1) + std::size_t(k)];
             for (std::size_t j = 0; j < slabs_; ++j) {
-                for (int a = 0; a < D; ++a)
+                for (int a = 0; a < D; ++a) {
                     t.plain_mc2[j][std::size_t(a)] +=
                         plain_slab_[(b * slabs_ + j) * D + std::size_t(a)];
+                    t.instant_mc2[j][std::size_t(a)] +=
+                        instant_slab_[(b * slabs_ + j) * D + std::size_t(a)];
+                }
             }
         }
         for (std::size_t j = 0; j < slabs_; ++j) {
@@ -330,6 +359,12 @@ class LocalTemperature final : public Observable<D> {
             err[j] = e.error;
         }
         g.profile("T_" + c + "_plain_profile", val, err, "energy");
+        for (std::size_t j = 0; j < slabs_; ++j) {
+            const Estimate e = jack([&](const Totals& t) { return t.instant_local(j, a); });
+            val[j] = e.value;
+            err[j] = e.error;
+        }
+        g.profile("T_" + c + "_instantaneous_profile", val, err, "energy");
         const Estimate tp = jack([&](const Totals& t) { return t.particle_average(a); });
         const Estimate tv = jack([&](const Totals& t) { return t.volume_average(bed, a); });
         const Estimate tb = jack([&](const Totals& t) { return t.plain(a); });
@@ -383,6 +418,9 @@ class LocalTemperature final : public Observable<D> {
     std::vector<double> sums_;
     std::vector<double> plain_;       // per block: sum m (v_a - V_a)^2 (D), count
     std::vector<double> plain_slab_;  // per block and slab: sum m (v_a - V_a)^2 (D)
+    // Per block and slab: sum m (v_a - w_a)^2, w the slab's mean velocity at each sample (D).
+    std::vector<double> instant_slab_;
+    std::vector<double> instant_;  // this sample's per-slab sum m, m v_a, m v_a^2 (scratch)
     std::vector<std::size_t> samples_in_block_;
 };
 
@@ -396,7 +434,9 @@ the same slab (depth `bin_width`; the paper: one diameter) at the same phase of 
 
 Writes the profiles `z` (slab centres measured from the mean position of the lower wall),
 `T_x_profile`, ... with `_error`, the same about the centre-of-mass velocity `T_x_plain_profile`,
-..., `phi` (volume fraction) and `grains_per_slab`; the scalars `T_x`, `T_y`, (`T_z`), `T` as
+..., about the mean velocity of the slab's grains at each sample `T_x_instantaneous_profile`, ...
+(no phase binning; a slab holding one grain at a sample adds nothing: sparse slabs read low),
+`phi` (volume fraction) and `grains_per_slab`; the scalars `T_x`, `T_y`, (`T_z`), `T` as
 particle averages (each grain counts once), `T_x_volume`, ... `T_volume` as volume averages (the
 mean of T_a(z) over the slabs of the bed, the paper's T = int T dV / V), `T_x_plain`, ... as plain
 averages about the instantaneous centre-of-mass velocity of all grains (no local resolution: the
