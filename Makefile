@@ -89,7 +89,7 @@ reproduce-mcnamara-falcon-2005: build
 	done
 	$(PY) studies/mcnamara-falcon-2005/figures.py $(MF2005_OUT)
 
-# Bhateja, Sharma & Singh 2016: Figs. 2, 4, 6-16 and Tables I-III (about 330 runs, 20-40 min on 2
+# Bhateja, Sharma & Singh 2016: Figs. 2, 4, 5, 6-16 and Tables I-III (about 430 runs, about 1.5 h on 2
 # cores; completed runs are reused, then about 6 s). Writes results/bhateja-2016/comparison.csv
 # (paper vs measured, studies/bhateja-2016/analysis.py) and figures/*.png (figures.py).
 BH2016_STUDIES := rest-2d rest-3d sweep-2d sweep-3d lid-g0 engines-2d sensitivity-3d amplitude-2d \

@@ -106,10 +106,10 @@ def paper_interval(paper):
     return None
 
 
-def agrees(row, sigmas=2.0, relative=0.1):
-    """Whether `measured` lies within max(sigmas x error, relative x |paper|) of the paper's
-    number (or of its printed range); None when there is nothing to compare (no paper number, no
-    measurement)."""
+def agrees(row, sigmas=2.0, relative=0.1, absolute=0.0):
+    """Whether `measured` lies within max(sigmas x error, relative x |paper|, absolute) of the
+    paper's number (or of its printed range); None when there is nothing to compare (no paper
+    number, no measurement). `absolute` serves a paper's 0 (no relative slack there)."""
     interval = paper_interval(row.paper)
     if interval is None or row.measured is None or math.isnan(row.measured):
         return None
@@ -119,7 +119,7 @@ def agrees(row, sigmas=2.0, relative=0.1):
     # relative slack, only the measurement's error.
     finite = [abs(x) for x in interval if math.isfinite(x)]
     rel = relative if lo == hi or all(math.isfinite(x) for x in interval) else 0.0
-    slack = max(sigmas * err, rel * max(finite))
+    slack = max(sigmas * err, rel * max(finite), absolute)
     return lo - slack <= row.measured <= hi + slack
 
 
@@ -127,8 +127,8 @@ class Verdicts:
     """A paper's tolerance and the written causes of the rows that differ from it.
 
     The file (YAML): `tolerance: {sigmas: 2, relative: 0.1}` (the default tolerance of every
-    row) and `verdicts:`, a list of `{match: REGEX, cause: TEXT}` with optional `sigmas` and
-    `relative` (that rows' own tolerance) and `kind` (what the cause is: gran defect, modelling
+    row; optional `absolute`) and `verdicts:`, a list of `{match: REGEX, cause: TEXT}` with
+    optional `sigmas`, `relative` and `absolute` (those rows' own tolerance) and `kind` (what the cause is: gran defect, modelling
     difference, paper ambiguity, definition, not measurable here, statistics, or unexplained: a
     difference whose cause was looked for and not found, the cause then saying what was ruled
     out). A row takes the first entry whose `match` matches its whole quantity name."""
@@ -140,6 +140,7 @@ class Verdicts:
         tolerance = tolerance or {}
         self.sigmas = float(tolerance.get("sigmas", 2.0))
         self.relative = float(tolerance.get("relative", 0.1))
+        self.absolute = float(tolerance.get("absolute", 0.0))
         self.entries = []
         for e in entries:
             if "match" not in e or "cause" not in e:
@@ -167,7 +168,8 @@ class Verdicts:
         """'agrees', 'differs', or None (nothing to compare), with the row's tolerance."""
         e = self.entry(row.quantity) or {}
         ok = agrees(row, float(e.get("sigmas", self.sigmas)),
-                    float(e.get("relative", self.relative)))
+                    float(e.get("relative", self.relative)),
+                    float(e.get("absolute", self.absolute)))
         return None if ok is None else ("agrees" if ok else "differs")
 
 

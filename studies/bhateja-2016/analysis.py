@@ -5,7 +5,8 @@ Usage: /usr/bin/python3 studies/bhateja-2016/analysis.py [RESULTS_DIR]
 
 Reads the study tables (`<study>.study.csv`, `lid-g0.fits.csv`) and per-run results (`<run>.h5`,
 profiles) of the studies in this folder from RESULTS_DIR (default results/bhateja-2016) and writes
-RESULTS_DIR/comparison.csv (`quantity,paper,measured,error`, rewritten from scratch). `paper` is
+RESULTS_DIR/comparison.csv (`quantity,paper,measured,error,status,cause`, rewritten from scratch;
+`status` and `cause` from verdicts.yaml, gran.comparison; the rows of diagnostics.py follow). `paper` is
 the number the paper prints (read from paper.yaml), empty where the paper gives none; `error` is the
 one-standard-error bar of `measured` (gran's jackknife block errors, fit covariances, propagated),
 empty when there is none. A study whose results are missing is skipped with a note.
@@ -134,10 +135,12 @@ class Study:
                 raise ValueError(f"{row['run']}: cannot reconstruct the bed of the volume average")
             nan = np.full(len(grains), np.nan)
             plain = c + "_plain_profile"
+            instant = c + "_instantaneous_profile"
             return {"z": g["z"][:], "T": g[c + "_profile"][:],
                     "T_error": g[c + "_profile_error"][:],
                     "T_plain": g[plain][:] if plain in g else nan,
                     "T_plain_error": g[plain + "_error"][:] if plain in g else nan,
+                    "T_instant": g[instant][:] if instant in g else nan,
                     "phi": g["phi"][:],
                     "phi_error": g["phi_error"][:], "grains": grains, "bed": bed,
                     "W": float(g["W"][()]), "Vp": float(g["peak_velocity"][()])}
@@ -634,10 +637,12 @@ def all_rows(directory):
 
 
 def main():
+    import diagnostics  # the open points of issue 16 (it reads through this module)
     directory = Path(sys.argv[1] if len(sys.argv) > 1 else "results/bhateja-2016")
-    rows = all_rows(directory)
-    comparison.write(rows, directory / "comparison.csv")
-    print(f"{directory / 'comparison.csv'}: {len(rows)} rows")
+    rows = all_rows(directory) + diagnostics.rows(directory)
+    verdicts = comparison.Verdicts.load(HERE / "verdicts.yaml")
+    comparison.write(rows, directory / "comparison.csv", verdicts=verdicts)
+    comparison.report(rows, verdicts, directory / "comparison.csv")
 
 
 if __name__ == "__main__":

@@ -314,6 +314,81 @@ def engines(directory, out):
     save(fig, out, "engines", "Both engines: DEM over event-driven T_z")
 
 
+def fig5(directory, out):
+    """Fig. 5: Tbar_z of the horizontally shaken channel against W, with and without gravity, and
+    the lid hits per base hit (diagnostics.fig5_rows)."""
+    study = load(directory, "fig5")
+    if study is None:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.3))
+    for point, color in (("fig5_g1", "C0"), ("fig5_g0", "C2")):
+        if point not in study.points():
+            continue
+        runs = study.runs(point)
+        vp = np.array([study.table.number(r, "drivers.vibrating_box.peak_velocity") for r in runs])
+        for d in study.definitions():
+            ve = np.array([study.tbar(r, d) for r in runs])
+            ebar(axes[0], vp ** 2, ve[:, 0], ve[:, 1], color, d,
+                 f"{'g' if point.endswith('g1') else 'g = 0'}, {d}")
+        lid = [study.table.number(r, "drivers.vibrating_box.hits_z_upper") /
+               max(study.table.number(r, "drivers.vibrating_box.hits_z_lower"), 1) for r in runs]
+        axes[1].plot(vp ** 2, lid, "o-", color=color, label=point)
+    axes[0].set_xscale("log")
+    label(axes[0], "W = V_p^2/(d g) (nominal g for g = 0)", "T_z/(m V_p^2)", "Tbar_z")
+    axes[1].set_xscale("log")
+    axes[1].set_yscale("log")
+    label(axes[1], "W", "lid hits / base hits", "grains reaching the lid")
+    save(fig, out, "fig5", "Fig. 5: channel 43 d x 10 d shaken along x, A = 10 d, e = 0.3, smooth")
+
+
+def ct_scan(directory, out):
+    """Tbar_z of the rough 3D bed against W for c_t / c_n = 0 ... 2, one panel per temperature
+    definition, with the paper's algebraic Table III curve (and half of it: the x2 reading)."""
+    from diagnostics import CT_POINTS
+    studies = {n: load(directory, n) for n in ("ct-scan-3d", "sweep-3d")}
+    if any(s is None for s in studies.values()):
+        return
+    defs = studies["sweep-3d"].definitions()
+    fig, axes = plt.subplots(1, len(defs), figsize=(5.5 * len(defs), 4.3), squeeze=False)
+    wc = np.geomspace(1, 135, 200)
+    for ax, d in zip(axes[0], defs):
+        for k, (ct, name, point) in enumerate(CT_POINTS):
+            w, y, e = studies[name].curve(point, d)
+            ebar(ax, w, y, e, f"C{k}", d, f"c_t = {ct} c_n")
+        ax.plot(wc, paper_algebraic("3D", wc), "k--", lw=1, label="paper Table III")
+        ax.plot(wc, paper_algebraic("3D", wc) / 2, "k:", lw=1, label="paper / 2")
+        ax.set_xscale("log")
+        label(ax, "W", "T_z/(m V_p^2)", f"3D rough, {d}")
+    save(fig, out, "ct-scan", "Table III and Fig. 2 against the tangential damping c_t (3D rough)")
+
+
+def profile_peak(directory, out):
+    """Figs. 12-14 at W = 22.35 and 85.01: local T(z), plain T(z) and the density-weighted
+    n(z) T(z) / N, each over its maximum (diagnostics.profile_peak_rows)."""
+    from diagnostics import weighted_profile
+    study = load(directory, "profiles-3d")
+    s3 = load(directory, "sweep-3d")
+    if study is None or s3 is None:
+        return
+    cases = (("N = 4, W = 22.35", study, "prof3d_N4", 22.35),
+             ("N = 8, W = 22.35", study, "prof3d_N8", 22.35),
+             ("N = 4, W = 85.01", s3, "sweep3d_smooth", 85.01))
+    fig, axes = plt.subplots(1, len(cases), figsize=(16, 4.3))
+    for ax, (title, st, point, w) in zip(axes, cases):
+        p = st.profile(st.at(point, w))
+        seen = p["grains"] > 0
+        for key, values, style in (("local T", p["T"], "o-"), ("plain T", p["T_plain"], "s--"),
+                                   ("instantaneous T", p["T_instant"], "d-"),
+                                   ("n T / N", weighted_profile(p), "^-")):
+            v = np.where(seen, values, np.nan)
+            if np.all(np.isnan(v)):
+                continue
+            ax.plot(p["z"][seen], v[seen] / np.nanmax(v), style, ms=3, label=key)
+        ax.axvspan(7, 10, color="0.9", zorder=0, label="paper: hottest 7-10 d")
+        label(ax, "z/d", "profile / its maximum", f"3D smooth, {title}")
+    save(fig, out, "profile-peak", "Where the profiles peak: T(z) against n(z) T(z) / N")
+
+
 def main():
     directory = Path(sys.argv[1] if len(sys.argv) > 1 else "results/bhateja-2016")
     out = directory / "figures"
@@ -335,6 +410,9 @@ def main():
             out)
     fig11(directory, out)
     engines(directory, out)
+    fig5(directory, out)
+    ct_scan(directory, out)
+    profile_peak(directory, out)
     print(f"{out}: {', '.join(sorted(p.stem for p in out.glob('*.png')))}")
 
 

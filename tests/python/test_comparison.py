@@ -63,6 +63,8 @@ class ComparisonTest(fixtures.TempDirTest):
         self.assertTrue(comparison.agrees(row("q", "> 3", 3.37, 0.003)))      # a bound
         self.assertFalse(comparison.agrees(row("q", "> 3", 2.9, 0.01)))
         self.assertTrue(comparison.agrees(row("q", "< 1", 1.01, 0.01)))       # 1 error above
+        self.assertFalse(comparison.agrees(row("q", 0, 1e-11, 1e-13)))         # a paper's 0
+        self.assertTrue(comparison.agrees(row("q", 0, 1e-11, 1e-13), absolute=1e-6))
         self.assertIsNone(comparison.agrees(row("q", None, 1.0, 0.1)))
         self.assertIsNone(comparison.agrees(row("q", "about 0.2", 0.3, None)))
         self.assertIsNone(comparison.agrees(row("q", 2, math.nan, None)))
