@@ -17,9 +17,11 @@ void collect(const YAML::Node& n, const std::string& prefix,
              std::map<std::string, SummaryNumber>& out) {
     if (n.IsMap()) {
         if (n["value"] && n["value"].IsScalar()) {
+            // The number first: a text or a flag is no number and leaves no entry behind.
             try {
-                out[prefix] = {n["value"].as<double>(), number_or_nan(n["error"]),
-                               number_or_nan(n["n_eff"])};
+                const SummaryNumber x{n["value"].as<double>(), number_or_nan(n["error"]),
+                                      number_or_nan(n["n_eff"])};
+                out[prefix] = x;
             } catch (const YAML::Exception&) {
             }
             return;
@@ -30,7 +32,8 @@ void collect(const YAML::Node& n, const std::string& prefix,
         }
     } else if (n.IsScalar()) {
         try {
-            out[prefix] = {n.as<double>()};
+            const SummaryNumber x{n.as<double>()};
+            out[prefix] = x;
         } catch (const YAML::Exception&) {
         }
     }
