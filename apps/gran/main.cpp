@@ -429,9 +429,10 @@ void print_target(const YAML::Node& summary) {
                                  q["n_eff"] ? fmt::format("{:.0f}", summary_number(q["n_eff"]))
                                             : std::string("unknown: fixed blocks"));
         if (q["forecast_cpu_seconds"])
-            std::cout << fmt::format("; reached after about {:.3g} CPU s (+-{:.0f}%)",
-                                     summary_number(q["forecast_cpu_seconds"]),
-                                     100 * summary_number(q["forecast_uncertainty"]));
+            std::cout << fmt::format(
+                "; first-look forecast to reach it: about {:.3g} CPU s (+-{:.0f}%)",
+                summary_number(q["forecast_cpu_seconds"]),
+                100 * summary_number(q["forecast_uncertainty"]));
         std::cout << "\n";
     }
     if (const YAML::Node f = t["forecast"])
