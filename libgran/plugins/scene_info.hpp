@@ -44,7 +44,7 @@ struct SceneInfo {
     // then; [0, L] when every wall starts at its outermost position, and on periodic axes). The
     // initial placement puts the particles there (the drivers are built first).
     std::vector<double> room_lower, room_upper;
-    std::size_t index = 0;    // position of the plugin in its list (distinct random streams)
+    std::size_t index = 0;  // position of the plugin in its list (distinct random streams)
 };
 
 }  // namespace gran

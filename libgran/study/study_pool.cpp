@@ -61,7 +61,8 @@ std::string group_of(const StudyRun& run) {
     if (run.replica <= 0) return run.name;
     const std::string suffix = "_r" + std::to_string(run.replica);
     const std::string& n = run.name;
-    return n.size() > suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0
+    return n.size() > suffix.size() &&
+                   n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0
                ? n.substr(0, n.size() - suffix.size())
                : n;
 }

@@ -38,7 +38,8 @@ TEST(Measurements, ObservablesAreWrittenMidRunWithTheSamplesTakenSoFar) {
     const std::string path = (testing::temp_dir() / "measurements.h5").string();
     const YAML::Node summary = YAML::Load(write_measurements(sim, path));
     auto f = h5::File::open_read(path);
-    const auto series = f.root().group("observables/temperatures/series/T_mixture").read_doubles("value");
+    const auto series =
+        f.root().group("observables/temperatures/series/T_mixture").read_doubles("value");
     EXPECT_EQ(series.size(), 30u);
     const double T = summary["observables"]["temperatures"]["T_mixture"]["value"].as<double>();
     EXPECT_GT(T, 0.0);
