@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
-#include <regex>
 
 namespace gran {
 
@@ -13,6 +13,13 @@ double TargetError::absolute(double value) const {
 
 namespace {
 
+std::string trim(const std::string& s) {
+    const auto a = s.find_first_not_of(" \t");
+    if (a == std::string::npos) return "";
+    const auto b = s.find_last_not_of(" \t");
+    return s.substr(a, b - a + 1);
+}
+
 // A positive number, or a positive percentage "2%" / "0.5 %".
 TargetError read_one(const std::string& quantity, const YAML::Node& v, const Where& w) {
     if (!v.IsScalar()) fail(w, v, "expected an error bar: a number (0.002) or a percentage (1%)");
@@ -20,12 +27,10 @@ TargetError read_one(const std::string& quantity, const YAML::Node& v, const Whe
     t.quantity = quantity;
     t.text = v.Scalar();
     t.location = locate(w, v);
-    static const std::regex percent(R"(\s*([0-9.eE+-]+)\s*%\s*)");
-    std::smatch m;
-    std::string number = t.text;
-    if (std::regex_match(t.text, m, percent)) {
+    std::string number = trim(t.text);
+    if (!number.empty() && number.back() == '%') {
         t.relative = true;
-        number = m[1].str();
+        number = trim(number.substr(0, number.size() - 1));
     }
     try {
         std::size_t used = 0;
@@ -52,17 +57,25 @@ CostCap read_cap(const YAML::Node& v, const Where& w, const std::string& work_un
              "expected a cost: CPU seconds (600 or '600 s') or engine work ('1e9 " + work_unit +
                  "')");
     cap.text = v.Scalar();
-    static const std::regex form(R"(\s*([0-9.eE+]+)\s*([a-z]*)\s*)");
-    std::smatch m;
+    // "<number> [unit]": the number up to the first letter other than an exponent's e.
+    const std::string text = trim(cap.text);
+    std::size_t cut = 0;
+    while (cut < text.size() &&
+           (std::isdigit(static_cast<unsigned char>(text[cut])) || text[cut] == '.' ||
+            text[cut] == '+' ||
+            ((text[cut] == 'e' || text[cut] == 'E') && cut > 0 && cut + 1 < text.size() &&
+             (std::isdigit(static_cast<unsigned char>(text[cut + 1])) || text[cut + 1] == '+' ||
+              text[cut + 1] == '-'))))
+        ++cut;
     double x = 0;
-    if (std::regex_match(cap.text, m, form)) {
-        try {
-            x = std::stod(m[1].str());
-        } catch (const std::exception&) {
-            x = 0;
-        }
+    try {
+        std::size_t used = 0;
+        x = cut > 0 ? std::stod(text.substr(0, cut), &used) : 0.0;
+        if (used != cut) x = 0;
+    } catch (const std::exception&) {
+        x = 0;
     }
-    const std::string unit = m.size() > 2 ? m[2].str() : "";
+    const std::string unit = trim(text.substr(cut));
     if (!(x > 0) || !std::isfinite(x) ||
         !(unit.empty() || unit == "s" || unit == "events" || unit == "steps")) {
         fail(w, v,
