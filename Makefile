@@ -137,9 +137,9 @@ BH3D_W20 := --set drivers.0.frequency=0.711763 --set run.sample_interval=0.19290
   --quantity observables.local_temperature.T_z_plain_scaled \
   --quantity observables.barycentric_height.h_cm
 tradeoff: build
-	$(BUILD_DIR)/gran tradeoff studies/bhateja-2016/canonical-3d.yaml --set engine.friction=0.4 \
+	$(BUILD_DIR)/gran tradeoff studies/bhateja-2016/canonical-3d.yaml --set interactions.friction=0.4 \
 	  $(BH3D_W20) -o $(TRADEOFF_OUT)/bhateja-3d-rough
-	$(BUILD_DIR)/gran tradeoff studies/bhateja-2016/canonical-3d.yaml --set engine.friction=0 \
+	$(BUILD_DIR)/gran tradeoff studies/bhateja-2016/canonical-3d.yaml --set interactions.friction=0 \
 	  $(BH3D_W20) -o $(TRADEOFF_OUT)/bhateja-3d-smooth
 	$(BUILD_DIR)/gran study studies/tradeoff/dem-convergence-3d.yaml -o $(TRADEOFF_OUT)/dem-convergence-3d
 	$(BUILD_DIR)/gran tradeoff studies/barrat-trizac-2002/vibrated-mixture.yaml \

@@ -157,7 +157,7 @@ void plot_tradeoff(const gran::StudyReport& rep) {
 }
 
 int cmd_study(const std::string& file, const std::string& out, int jobs, bool quiet,
-              bool reuse_any_version = false) {
+              bool reuse_any_version = false, bool forecast = false) {
     try {
         const gran::Study st = gran::load_study(file);
         gran::StudyOptions opt;
@@ -166,9 +166,16 @@ int cmd_study(const std::string& file, const std::string& out, int jobs, bool qu
         opt.gran_binary = std::filesystem::read_symlink("/proc/self/exe").string();
         opt.progress = !quiet;
         opt.reuse_any_version = reuse_any_version;
+        opt.forecast = forecast;
         opt.interrupt = &g_interrupt;
         stop_on_signals();
         const gran::StudyReport rep = gran::run_study(st, opt);
+        if (forecast) {
+            std::ifstream md(rep.forecast);
+            std::cout << md.rdbuf() << "forecast: " << rep.forecast << "\n";
+            if (rep.interrupted) return 3;
+            return rep.failed > 0 ? 1 : 0;
+        }
         std::cout << fmt::format(
             "{} ran, {} reused, {} failed{}; at most {} at a time\nresult: {}\ntable: {}\n",
             rep.ran, rep.reused, rep.failed, rep.interrupted ? " (interrupted)" : "",
@@ -245,6 +252,8 @@ struct CommandLine {
     std::string study_file, study_out;
     int jobs = 0;
     bool reuse_any_version = false;
+    bool study_forecast = false;
+    std::string pilot_output;
     // tradeoff
     gran::TradeoffRequest treq;
     std::string tout;
@@ -284,6 +293,8 @@ CLI::App* add_check(CLI::App& app, CommandLine& cl) {
         app.add_subcommand("check", "validate a scene (and its initial placement) without running");
     check->add_option("scene", cl.scene_file, "scene file (YAML)")->required();
     check->add_option("--set", cl.sets, "override a scene key (repeatable)");
+    check->add_option("--pilot-output", cl.pilot_output,
+                      "with run.target_error: keep the pilot's result (and its summary) here");
     check->fallthrough();
     return check;
 }
@@ -295,6 +306,9 @@ CLI::App* add_study(CLI::App& app, CommandLine& cl) {
     study->add_option("-o,--output", cl.study_out, "result folder (default results/<study>)");
     study->add_option("-j,--jobs", cl.jobs,
                       "runs at a time (default: the study's `jobs`, else all cores)");
+    study->add_flag("--forecast", cl.study_forecast,
+                    "run only a pilot of each point with run.target_error and write what the "
+                    "study is forecast to cost (OUTDIR/<study>.forecast.md)");
     study->add_flag("--reuse-any-version", cl.reuse_any_version,
                     "reuse complete results made by another code version (each is named); by "
                     "default they are rerun");
@@ -319,6 +333,9 @@ CLI::App* add_tradeoff(CLI::App& app, CommandLine& cl) {
                          "summary quantity to compare (repeatable; default: the headline ones)");
     tradeoff->add_option("--analytic", cl.analytic,
                          "exact value of a quantity, the reference for it: QUANTITY=value");
+    tradeoff->add_option("--target-error", cl.treq.target_error,
+                         "error bar each setting's cost is forecast to reach: QUANTITY=0.002 or "
+                         "QUANTITY=1% (repeatable; default: the base run's error bar)");
     tradeoff->add_option("-o,--output", cl.tout,
                          "result folder (default results/tradeoff-<scene>)");
     tradeoff->add_option("-j,--jobs", cl.jobs, "runs at a time (default: all cores)");
@@ -437,9 +454,11 @@ void print_target(const YAML::Node& summary) {
     }
     if (const YAML::Node f = t["forecast"])
         std::cout << fmt::format(
-            "  forecast (first look): {:.3g} CPU s in all ({:.3g}-{:.3g}); spent {:.3g}\n",
+            "  forecast (first look): {:.3g} CPU s in all ({:.3g}-{:.3g}), {:.3g} at the look "
+            "where it stops; spent {:.3g}\n",
             summary_number(f["cpu_seconds"]), summary_number(f["cpu_seconds_low"]),
-            summary_number(f["cpu_seconds_high"]), summary_number(t["cpu_seconds"]));
+            summary_number(f["cpu_seconds_high"]), summary_number(f["cpu_seconds_at_stop_look"]),
+            summary_number(t["cpu_seconds"]));
 }
 
 // The run's result and exit status: 0 completed, 1 stopped by the watchdog, 3 interrupted, 2 a
@@ -514,13 +533,14 @@ int out_of_memory(const char* stage, const gran::Scene* scene) {
 }
 
 // `gran check` of a scene with run.target_error: a pilot run to the first look (equilibration and
-// the minimum measurement), in a temporary folder, and its forecast of what the targets cost.
-int run_pilot(const gran::Scene& scene) {
+// the minimum measurement), in a temporary folder unless `keep` names its result (`gran study
+// --forecast` reads the pilot's summary), and its forecast of what the targets cost.
+int run_pilot(const gran::Scene& scene, const std::string& keep) {
     const auto dir = std::filesystem::temp_directory_path() /
                      fmt::format("gran-pilot-{}", static_cast<long>(getpid()));
-    std::filesystem::create_directories(dir);
+    if (keep.empty()) std::filesystem::create_directories(dir);
     gran::RunOptions opt;
-    opt.output = (dir / "pilot.h5").string();
+    opt.output = keep.empty() ? (dir / "pilot.h5").string() : keep;
     opt.progress = false;
     opt.pilot = true;
     opt.interrupt = &g_interrupt;
@@ -529,7 +549,7 @@ int run_pilot(const gran::Scene& scene) {
     const gran::RunReport rep = gran::run_scene(scene, opt);
     print_target(rep.summary);
     std::error_code ec;
-    std::filesystem::remove_all(dir, ec);
+    if (keep.empty()) std::filesystem::remove_all(dir, ec);
     if (rep.target_status == "unknown_quantity") {
         std::cerr << "gran: error: " << rep.target_reason << "\n";
         return 2;
@@ -561,7 +581,11 @@ int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
                                      cl.scene_file, scene.dimension, scene.species.total_count(),
                                      scene.packing_fraction);
             print_cost(scene);
-            if (scene.target.active()) return run_pilot(scene);
+            if (scene.target.active()) return run_pilot(scene, cl.pilot_output);
+            if (!cl.pilot_output.empty())
+                throw gran::SceneError(
+                    "--pilot-output: the scene has no run.target_error, so "
+                    "there is no pilot to run");
             return 0;
         }
         const gran::RunOptions opt = run_options(cl, argc, argv);
@@ -615,7 +639,8 @@ int main(int argc, char** argv) {
     if (list->parsed()) return cmd_list(cl.what, cl.markdown);
     if (exporter->parsed()) return cmd_export(cl);
     if (study->parsed())
-        return cmd_study(cl.study_file, cl.study_out, cl.jobs, cl.quiet, cl.reuse_any_version);
+        return cmd_study(cl.study_file, cl.study_out, cl.jobs, cl.quiet, cl.reuse_any_version,
+                         cl.study_forecast);
     if (tradeoff->parsed())
         return cmd_tradeoff(cl.treq, cl.knob_ladders, cl.analytic, cl.tout, cl.jobs, cl.quiet,
                             cl.dry_run);

@@ -48,6 +48,7 @@ void write_provenance(ResultGroup root, const Scene& sc,
 void write_run_performance(ResultGroup& performance, const RunTotals& t) {
     performance.value("wall_time", t.wall_time, "s");
     performance.value("cpu_time", t.cpu_time, "s");
+    performance.value("cpu_time_measuring", t.cpu_time_measuring, "s");
     ResultGroup file = performance.file_only();
     file.value("final_time", t.final_time);
     file.value("measured_collisions_per_particle", t.measured_collisions_per_particle);

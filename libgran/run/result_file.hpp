@@ -20,6 +20,9 @@ void write_provenance(ResultGroup root, const Scene& sc,
 struct RunTotals {
     double wall_time = 0;  // s
     double cpu_time = 0;   // s
+    // s of cpu_time spent measuring (after equilibration): what a longer measurement scales,
+    // read by the cost forecasts of `gran tradeoff` (libgran/run/target_run.hpp)
+    double cpu_time_measuring = 0;
     double final_time = 0;
     double measured_time = 0;
     double measured_collisions_per_particle = 0;
@@ -32,7 +35,8 @@ struct RunTotals {
     double checkpoint_time = 0;     // wall-clock s spent writing checkpoints
 };
 
-// wall_time and cpu_time (HDF5 and summary), the rest in HDF5 only (the summary has `status`).
+// wall_time, cpu_time and cpu_time_measuring (HDF5 and summary), the rest in HDF5 only (the summary
+// has `status`).
 void write_run_performance(ResultGroup& performance, const RunTotals& totals);
 
 // The summary's header: scene, title, result, status, error, dimension, particles, packing

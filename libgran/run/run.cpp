@@ -104,6 +104,8 @@ class ScheduleLoop {
     // Wall-clock and CPU seconds of the whole run (earlier sessions of a resumed run included).
     double elapsed() const { return prior_wall_ + progress_.elapsed(); }
     double cpu() const { return prior_cpu_ + double(std::clock()) / CLOCKS_PER_SEC - cpu0_; }
+    // CPU seconds since the measurement started (meaningful once it has).
+    double cpu_measuring() const { return cpu() - cpu_measure_start_; }
     std::uint64_t checkpoints() const { return checkpoints_; }
     double checkpoint_seconds() const { return checkpoint_seconds_; }
     std::uint64_t resumes() const { return resumes_; }
@@ -229,7 +231,6 @@ class ScheduleLoop {
         const double n = double(runner_.view().particles().size());
         return 2.0 * double(runner_.collisions() - out_.coll_measure_start) / std::max(n, 1.0);
     }
-    double cpu_measuring() const { return cpu() - cpu_measure_start_; }
 
     // To the k-th sample of a phase that started at time t0 with c0 collisions; false when the
     // run stops there (interrupt, no more events, watchdog). An interrupted run writes a
@@ -424,6 +425,7 @@ RunReport run_with(const Scene& sc, const RunOptions& opt, Simulation& sim, doub
     RunTotals totals;
     totals.wall_time = loop.elapsed();
     totals.cpu_time = loop.cpu();
+    totals.cpu_time_measuring = out.samples > 0 ? loop.cpu_measuring() : 0.0;
     totals.checkpoints = loop.checkpoints();
     totals.checkpoint_time = loop.checkpoint_seconds();
     totals.resumes = loop.resumes();

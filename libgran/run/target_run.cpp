@@ -49,12 +49,8 @@ TargetLook look_at(const AccuracyTarget& target, const YAML::Node& observables_s
             // its jackknife rests on at least 8 blocks, and only the error bar counts.
             const bool known = std::isfinite(q.n_eff);
             q.met = q.error <= q.target && (!known || q.n_eff >= n_min);
-            // Error ~ 1/sqrt(length), n_eff ~ length.
-            const double by_error = q.target > 0 ? std::pow(q.error / q.target, 2) : INFINITY;
-            const double by_samples = !known ? 0.0 : q.n_eff > 0 ? n_min / q.n_eff : INFINITY;
-            q.length_needed = length * std::max({by_error, by_samples, 1e-300});
-            // The relative spread of an error^2 estimated from n_eff samples (8 blocks: unknown).
-            q.relative_uncertainty = std::sqrt(2.0 / (known ? std::max(q.n_eff, 1.0) : 8.0));
+            q.length_needed = length * growth_needed(q.error, q.n_eff, q.target, n_min);
+            q.relative_uncertainty = growth_uncertainty(q.n_eff);
             // A quantity over a window that no longer grows (a cooling state that broke down)
             // reports the same value and error at every look.
             if (previous && !q.met && k < previous->quantities.size() &&
@@ -74,6 +70,17 @@ TargetLook look_at(const AccuracyTarget& target, const YAML::Node& observables_s
     return look;
 }
 
+double growth_needed(double error, double n_eff, double target, double n_min) {
+    // Error ~ 1/sqrt(length), n_eff ~ length.
+    const double by_error = target > 0 ? std::pow(error / target, 2) : INFINITY;
+    const double by_samples = !std::isfinite(n_eff) ? 0.0 : n_eff > 0 ? n_min / n_eff : INFINITY;
+    return std::max({by_error, by_samples, 1e-300});
+}
+
+double growth_uncertainty(double n_eff) {
+    return std::sqrt(2.0 / (std::isfinite(n_eff) ? std::max(n_eff, 1.0) : 8.0));
+}
+
 double look_length(const AccuracyTarget& target, double minimum, int k) {
     return minimum * std::pow(target.look_ratio, k);
 }
@@ -90,8 +97,9 @@ Forecast forecast(const AccuracyTarget& target, const TargetLook& look, double m
         }
     }
     const double per_length = look.cpu_measuring / look.length;
-    const double before = look.cpu - look.cpu_measuring;
-    auto cpu_at = [&](double length) { return before + per_length * length; };
+    auto cpu_at = [&](double length) {
+        return cpu_after_growth(look.cpu, look.cpu_measuring, length / look.length);
+    };
     auto stop_at = [&](double length) {  // the first look at or past `length`
         int k = 0;
         while (look_length(target, minimum, k) < length * (1 - 1e-12) && k < 200) ++k;
@@ -99,10 +107,13 @@ Forecast forecast(const AccuracyTarget& target, const TargetLook& look, double m
     };
     f.valid = std::isfinite(need) && std::isfinite(per_length);
     f.length = need;
-    f.cpu = cpu_at(need);
+    // The run stops at a look, never before the one it is at: a target already met costs what
+    // was spent.
+    f.cpu = cpu_at(std::max(look.length, need));
     f.cpu_low = cpu_at(std::max(look.length, need / (1 + rel)));
-    f.cpu_high = cpu_at(need * (1 + rel));
+    f.cpu_high = cpu_at(std::max(look.length, need * (1 + rel)));
     f.stop_length = stop_at(need);
+    f.cpu_at_stop = cpu_at(f.stop_length);
     for (const QuantityLook& q : look.quantities) {
         f.cpu_per_quantity.push_back(cpu_at(q.length_needed));
         f.uncertainty_per_quantity.push_back(q.relative_uncertainty);
@@ -228,6 +239,7 @@ void TargetTracker::write(ResultGroup& g, double cpu_total, std::uint64_t work,
         fg.value("cpu_seconds_high", f.cpu_high, "s");
         fg.value("measured", f.length, unit_);
         fg.value("stop_at_look", f.stop_length, unit_);
+        fg.value("cpu_seconds_at_stop_look", f.cpu_at_stop, "s");
         fg.value("spent_over_forecast", cpu_total / f.cpu);
     }
     for (std::size_t k = 0; k < target_.targets.size(); ++k) {
@@ -286,6 +298,7 @@ void TargetTracker::checkpoint(StateArchive& ar) {
     ar.io(f.cpu_low);
     ar.io(f.cpu_high);
     ar.io(f.stop_length);
+    ar.io(f.cpu_at_stop);
     ar.io(f.cpu_per_quantity);
     ar.io(f.uncertainty_per_quantity);
 }

@@ -55,9 +55,24 @@ struct Forecast {
     double cpu = 0;     // CPU seconds of the whole run there
     double cpu_low = 0, cpu_high = 0;      // the same at 1 -/+ the uncertainty of that length
     double stop_length = 0;                // the first look at or past `length`
+    double cpu_at_stop = 0;                // CPU seconds of the whole run at that look
     std::vector<double> cpu_per_quantity;  // each quantity's own target (no look grid)
     std::vector<double> uncertainty_per_quantity;  // relative, of each length needed
 };
+
+// The forecast rule of one quantity, shared by runs with a target and by `gran tradeoff`: the
+// factor by which a measurement whose error bar is `error`, from `n_eff` effective samples (NaN:
+// fixed blocks, whose error alone counts), must grow to reach the absolute error bar `target`
+// with at least `n_min` effective samples.
+double growth_needed(double error, double n_eff, double target, double n_min);
+// The relative uncertainty of that factor: of an error^2 from n_eff samples, sqrt(2 / n_eff)
+// (8 blocks when n_eff is unknown).
+double growth_uncertainty(double n_eff);
+// The CPU seconds of a run that spent `cpu`, `cpu_measuring` of them measuring, had its
+// measurement been `growth` times as long.
+inline double cpu_after_growth(double cpu, double cpu_measuring, double growth) {
+    return cpu - cpu_measuring + cpu_measuring * growth;
+}
 
 // The look at `summary` (the observables section of a summary, libgran/run/measurements.hpp).
 // A quantity the summary lacks, or that has no error bar, is not found: the run stops with an

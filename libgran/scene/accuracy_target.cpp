@@ -20,8 +20,9 @@ std::string trim(const std::string& s) {
     return s.substr(a, b - a + 1);
 }
 
-// A positive number, or a positive percentage "2%" / "0.5 %".
-TargetError read_one(const std::string& quantity, const YAML::Node& v, const Where& w) {
+}  // namespace
+
+TargetError read_target_error(const std::string& quantity, const YAML::Node& v, const Where& w) {
     if (!v.IsScalar()) fail(w, v, "expected an error bar: a number (0.002) or a percentage (1%)");
     TargetError t;
     t.quantity = quantity;
@@ -48,6 +49,8 @@ TargetError read_one(const std::string& quantity, const YAML::Node& v, const Whe
         fail(w, v, "a relative error bar of 100% or more asks for nothing: give less than 100%");
     return t;
 }
+
+namespace {
 
 CostCap read_cap(const YAML::Node& v, const Where& w, const std::string& work_unit) {
     CostCap cap;
@@ -115,7 +118,7 @@ AccuracyTarget read_accuracy_target(const YAML::Node& run, const Where& where,
                      "a target names a summary quantity of an observable, "
                      "observables.<name>.<quantity> as in a study table (gran run writes them "
                      "to OUT.summary.yaml)");
-            out.targets.push_back(read_one(q, it->second, wq));
+            out.targets.push_back(read_target_error(q, it->second, wq));
         }
     }
     const YAML::Node cap = run.IsMap() ? run["max_cost"] : YAML::Node();

@@ -46,6 +46,10 @@ struct AccuracyTarget {
     bool active() const { return !targets.empty(); }
 };
 
+// One error bar, a positive number (0.002) or a percentage below 100 ("1%", "0.5 %"), for
+// `quantity`; SceneError at `w` otherwise. Also read by a study's `tradeoff.target_error`.
+TargetError read_target_error(const std::string& quantity, const YAML::Node& v, const Where& w);
+
 // Reads run.target_error (a map quantity -> "0.002" or "1%"), run.max_cost ("600 s",
 // "1e9 events", "1e8 steps", or a number of CPU seconds) and run.min_effective_samples from the
 // `run` section node; SceneError naming file, line and key on bad input. `engine_work_unit` is

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "libgran/scene/accuracy_target.hpp"
+
 namespace gran {
 
 // One run of a study: a named point with its scene-key overrides ("a.b.0.c=value").
@@ -47,6 +49,9 @@ struct StudyTradeoff {
     std::vector<std::string> quantities;  // summary quantities; empty: the default patterns
     std::vector<std::pair<std::string, double>> analytic;  // quantity -> exact value
     std::string cost = "performance.cpu_time";
+    // The error bars each setting's cost is forecast to reach (as run.target_error: absolute or
+    // "1%"); a quantity without one gets the error bar of the base runs (else the reference runs).
+    std::vector<TargetError> target_error;
 };
 
 struct Study {
@@ -75,6 +80,10 @@ struct StudyOptions {
     bool reuse_any_version = false;
     bool progress = true;
     const std::atomic<bool>* interrupt = nullptr;
+    // Run nothing but a pilot of each point whose runs have run.target_error (`gran check`'s
+    // first look) and report what the study's targets are forecast to cost
+    // (libgran/study/study_forecast.hpp).
+    bool forecast = false;
 };
 
 struct StudyReport {
@@ -87,6 +96,7 @@ struct StudyReport {
     int max_concurrent = 0;  // largest number of runs in flight at once
     std::string tradeoff;    // OUTDIR/<study stem>.tradeoff.md when the study has `tradeoff`
     std::string pooled;      // OUTDIR/<study stem>.pooled.csv when the study has replicas
+    std::string forecast;    // OUTDIR/<study stem>.forecast.md with StudyOptions::forecast
 };
 
 StudyReport run_study(const Study& study, const StudyOptions& options);

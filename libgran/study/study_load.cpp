@@ -112,7 +112,7 @@ std::vector<std::pair<std::string, std::vector<YAML::Node>>> read_lists(const Wh
 }
 
 StudyTradeoff read_tradeoff(const Where& w, const YAML::Node& n) {
-    require_map(w, n, "a trade-off: {reference, quantities, analytic, cost}");
+    require_map(w, n, "a trade-off: {reference, quantities, analytic, cost, target_error}");
     StudyTradeoff t;
     for (auto it = n.begin(); it != n.end(); ++it) {
         const std::string k = key_name(w, it->first);
@@ -142,9 +142,16 @@ StudyTradeoff read_tradeoff(const Where& w, const YAML::Node& n) {
                          "expected a finite non-zero number (deviations are relative to it)");
                 t.analytic.emplace_back(q, x);
             }
+        } else if (k == "target_error") {
+            require_map(wk, v, "a map from summary quantity to an error bar (0.002 or 1%)");
+            for (auto a = v.begin(); a != v.end(); ++a) {
+                const std::string q = key_name(wk, a->first);
+                t.target_error.push_back(read_target_error(q, a->second, wk.child(q)));
+            }
         } else {
             fail(wk, it->first,
-                 "unknown key; a trade-off has reference, quantities, analytic, cost");
+                 "unknown key; a trade-off has reference, quantities, analytic, cost, "
+                 "target_error");
         }
     }
     return t;

@@ -33,15 +33,20 @@ RunFiles run_files(const Study& st, const std::string& outdir) {
 namespace {
 
 // Every number in a run summary (value and error, NaN: none) by its dotted path
-// (libgran/run/summary_numbers.hpp).
+// (libgran/run/summary_numbers.hpp), and the effective samples of the error bars that have them.
 void flatten(const YAML::Node& n, const std::string& prefix,
-             std::map<std::string, std::pair<double, double>>& out) {
-    for (const auto& [name, x] : summary_numbers(n, prefix)) out[name] = {x.value, x.error};
+             std::map<std::string, std::pair<double, double>>& out,
+             std::map<std::string, double>& n_eff) {
+    for (const auto& [name, x] : summary_numbers(n, prefix)) {
+        out[name] = {x.value, x.error};
+        if (std::isfinite(x.n_eff)) n_eff[name] = x.n_eff;
+    }
 }
 
 struct Table {
     std::vector<std::string> quantities;  // union over runs, sorted
     std::vector<SummaryRow> rows;
+    std::vector<std::map<std::string, double>> n_eff;  // per run (the trade-off's forecasts)
 };
 
 Table summary_table(const Study& st, const std::vector<std::string>& summaries,
@@ -49,15 +54,15 @@ Table summary_table(const Study& st, const std::vector<std::string>& summaries,
     Table t;
     std::set<std::string> q;
     t.rows.resize(st.runs.size());
+    t.n_eff.resize(st.runs.size());
     for (std::size_t i = 0; i < st.runs.size(); ++i) {
         if (!have[i]) continue;
         try {
             const YAML::Node s = YAML::LoadFile(summaries[i]);
-            flatten(s["observables"], "observables", t.rows[i]);
-            flatten(s["drivers"], "drivers", t.rows[i]);
-            flatten(s["performance"], "performance", t.rows[i]);
+            for (const char* section : {"observables", "drivers", "performance"})
+                flatten(s[section], section, t.rows[i], t.n_eff[i]);
             // Runs with a target: the error reached, the cost, the forecast against it.
-            if (s["target"]) flatten(s["target"], "target", t.rows[i]);
+            if (s["target"]) flatten(s["target"], "target", t.rows[i], t.n_eff[i]);
         } catch (const YAML::Exception& e) {
             spdlog::warn("study: cannot read {}: {}", summaries[i], e.what());
         }
@@ -226,6 +231,7 @@ void write_tradeoff_report(const Study& st, const std::string& outdir, const std
           "`*`: on the Pareto front of (CPU time, |deviation| + error) for that quantity; "
           "`worst`: the largest |deviation| + error over the quantities, and its front.\n\n"
        << tradeoff_table(tradeoff);
+    if (const std::string f = tradeoff_forecast_table(tradeoff); !f.empty()) md << "\n" << f;
 }
 
 void write_fit_report(const std::string& outdir, const std::string& stem,
@@ -258,7 +264,8 @@ void merge_study(const Study& st, const std::string& outdir, const RunFiles& fil
     a.fits = fit_all(st, table.quantities, table.rows, have, [&](const StudyFit& f, std::size_t i) {
         return fit_x(f, st.runs[i], table.rows[i]);
     });
-    if (st.has_tradeoff) a.tradeoff = analyse_tradeoff(st, table.quantities, table.rows, have);
+    if (st.has_tradeoff)
+        a.tradeoff = analyse_tradeoff(st, table.quantities, table.rows, have, table.n_eff);
     rep.merged = (fs::path(outdir) / (stem + ".study.h5")).string();
     write_merged_file(rep.merged, st, files, have, a, rep, started);
     if (st.has_tradeoff) write_tradeoff_report(st, outdir, stem, a.tradeoff, rep);

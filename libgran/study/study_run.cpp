@@ -14,12 +14,14 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <thread>
 
 #include "libgran/core/build_info.hpp"
 #include "libgran/core/h5.hpp"
 #include "libgran/study/study.hpp"
+#include "libgran/study/study_forecast.hpp"
 #include "libgran/study/study_merge.hpp"
 
 extern char** environ;
@@ -60,9 +62,11 @@ bool reusable(const std::string& file, const std::string& resolved, bool any_ver
     }
 }
 
+// `gran run` of the run to `out`, or (pilot) `gran check` with its pilot's result kept at `out`.
 pid_t spawn_run(const std::string& binary, const std::string& scene, const std::string& out,
-                const StudyRun& run, const std::string& log) {
-    std::vector<std::string> args{binary, "--quiet", "run", scene, "-o", out};
+                const StudyRun& run, const std::string& log, bool pilot) {
+    std::vector<std::string> args{
+        binary, "--quiet", pilot ? "check" : "run", scene, pilot ? "--pilot-output" : "-o", out};
     for (const auto& a : assignments(run)) {
         args.push_back("--set");
         args.push_back(a);
@@ -142,7 +146,7 @@ class RunPool {
             pid_t pid = -1;
             try {
                 pid = spawn_run(opt_.gran_binary, st_.scene, files_.result[i], st_.runs[i],
-                                files_.log[i]);
+                                files_.log[i], opt_.forecast);
             } catch (const std::exception& e) {
                 // E.g. the binary is being rebuilt: this run fails, the others go on.
                 ++rep_.failed;
@@ -205,12 +209,41 @@ class RunPool {
 
 }  // namespace
 
+namespace {
+
+// The pilots of a study (StudyOptions::forecast): one per point whose runs have a target, run
+// like the study's runs, their results under OUTDIR/pilots; the report of what they forecast.
+StudyReport run_pilots(const Study& st, const StudyOptions& opt, const std::string& outdir,
+                       int jobs) {
+    StudyReport rep;
+    const fs::path dir = fs::path(outdir) / "pilots";
+    fs::create_directories(dir / "logs");
+    const std::vector<std::size_t> piloted = runs_to_pilot(st);
+    RunFiles files = run_files(st, dir.string());
+    spdlog::info(
+        "study {}: forecast from {} pilots (one per point with run.target_error) on {} "
+        "cores; pilots in {}",
+        st.file, piloted.size(), jobs, dir.string());
+    std::vector<bool> have(st.runs.size(), false);
+    RunPool(st, opt, files, piloted, jobs, have, rep, Clock::now()).run();
+    const std::string stem = fs::path(st.file).stem().string();
+    rep.forecast = (fs::path(outdir) / (stem + ".forecast.md")).string();
+    std::vector<std::string> summaries(st.runs.size());
+    for (std::size_t i : piloted)
+        if (have[i]) summaries[i] = files.summary[i];
+    std::ofstream(rep.forecast) << study_forecast_report(st, summaries, jobs);
+    return rep;
+}
+
+}  // namespace
+
 StudyReport run_study(const Study& st, const StudyOptions& opt) {
     StudyReport rep;
     const std::string outdir = opt.output_dir.empty() ? st.output_dir : opt.output_dir;
     const int jobs = opt.jobs > 0  ? opt.jobs
                      : st.jobs > 0 ? st.jobs
                                    : int(std::max(1u, std::thread::hardware_concurrency()));
+    if (opt.forecast) return run_pilots(st, opt, outdir, jobs);
     fs::create_directories(fs::path(outdir) / "logs");
     const RunFiles files = run_files(st, outdir);
     std::vector<bool> have(st.runs.size(), false);

@@ -9,6 +9,8 @@
 #include <numeric>
 #include <set>
 
+#include "libgran/study/tradeoff_forecast.hpp"
+
 namespace gran {
 
 std::vector<bool> pareto_front(std::span<const double> cost, std::span<const double> error) {
@@ -339,7 +341,8 @@ void mark_pareto_fronts(TradeoffResult& t) {
 }  // namespace
 
 TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>& quantities,
-                                const std::vector<Row>& rows, const std::vector<bool>& have) {
+                                const std::vector<Row>& rows, const std::vector<bool>& have,
+                                const std::vector<std::map<std::string, double>>& n_eff) {
     TradeoffResult t;
     const StudyTradeoff& spec = st.tradeoff;
     const RunSets s = run_sets(st, have);
@@ -349,6 +352,7 @@ TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>&
     const References refs = find_references(spec, wanted, s.refs, rows, t);
     for (std::size_t i : s.runs) t.rows.push_back(compare_run(st, i, rows[i], t, refs));
     mark_pareto_fronts(t);
+    add_cost_forecasts(st, rows, s.runs, n_eff, t);
     return t;
 }
 
@@ -384,8 +388,8 @@ void write_tradeoff(h5::Group& root, const TradeoffResult& t) {
     g.write_strings("problems", t.problems);
     for (std::size_t q = 0; q < t.quantities.size(); ++q) {
         h5::Group qg = g.group("quantities/" + t.quantities[q]);
-        std::vector<double> v, e, d, de, acc;
-        std::vector<std::int64_t> p;
+        std::vector<double> v, e, d, de, acc, cpu_to;
+        std::vector<std::int64_t> p, biased;
         for (const auto& r : t.rows) {
             v.push_back(r.cells[q].value);
             e.push_back(r.cells[q].error);
@@ -393,6 +397,8 @@ void write_tradeoff(h5::Group& root, const TradeoffResult& t) {
             de.push_back(r.cells[q].deviation_error);
             acc.push_back(r.cells[q].accuracy);
             p.push_back(r.cells[q].pareto);
+            cpu_to.push_back(r.cells[q].cpu_to_target);
+            biased.push_back(r.cells[q].biased);
         }
         qg.write("value", v);
         qg.write("error", e);
@@ -400,6 +406,11 @@ void write_tradeoff(h5::Group& root, const TradeoffResult& t) {
         qg.write("deviation_error", de);
         qg.write("accuracy", acc);
         qg.write("pareto", p);
+        qg.write("cpu_to_target", cpu_to);
+        qg.attr_on("cpu_to_target", "unit", "s");
+        qg.attr_on("cpu_to_target", "target", t.target[q]);
+        qg.attr_on("cpu_to_target", "target_kind", t.target_kind[q]);
+        qg.write("biased", biased);
         const double ref = t.rows.empty() ? std::nan("") : t.rows[0].cells[q].reference;
         const double ref_e = t.rows.empty() ? std::nan("") : t.rows[0].cells[q].reference_error;
         qg.write_scalar("reference", ref);
@@ -413,7 +424,8 @@ void write_tradeoff_csv(const std::string& path, const TradeoffResult& t) {
     // cost and wall_time in s, named as in /tradeoff and the run summaries.
     o << "run,point,knob,level,cost,wall_time,reference_run,worst_accuracy,pareto";
     for (const auto& q : t.quantities) {
-        for (const char* c : {"value", "error", "deviation", "deviation_error", "pareto"})
+        for (const char* c : {"value", "error", "deviation", "deviation_error", "pareto",
+                              "cpu_to_target", "biased"})
             o << "," << q << "." << c;
     }
     o << "\n";
@@ -423,7 +435,8 @@ void write_tradeoff_csv(const std::string& path, const TradeoffResult& t) {
           << num(r.wall) << "," << int(r.reference) << "," << num(r.worst) << "," << int(r.pareto);
         for (const auto& c : r.cells) {
             o << "," << num(c.value) << "," << num(c.error) << "," << num(c.deviation) << ","
-              << num(c.deviation_error) << "," << int(c.pareto);
+              << num(c.deviation_error) << "," << int(c.pareto) << "," << num(c.cpu_to_target)
+              << "," << int(c.biased);
         }
         o << "\n";
     }

@@ -32,6 +32,12 @@ struct TradeoffCell {
     double deviation = 0, deviation_error = 0;  // (value - reference) / |reference|
     double accuracy = 0;  // |deviation| + deviation_error: the error to expect at this setting
     bool pareto = false;  // on the front of (cost, accuracy) for this quantity
+    // The forecast of runs with a target (libgran/run/target_run.hpp) applied to this run: the
+    // CPU seconds at which its error bar would reach the quantity's target, with the relative
+    // uncertainty of that forecast; `biased`: |deviation| exceeds the target by more than two
+    // deviation errors, so no measurement length reaches that accuracy at this setting.
+    double cpu_to_target = 0, cpu_to_target_uncertainty = 0;
+    bool biased = false;
 };
 
 struct TradeoffRow {
@@ -42,11 +48,17 @@ struct TradeoffRow {
     double worst = 0;                 // largest accuracy over the quantities
     bool pareto = false;              // on the front of (cost, worst)
     bool reference = false;           // a run of the reference point
+    double cpu_to_targets = 0;        // largest cpu_to_target over the quantities
+    bool biased = false;              // some quantity is biased beyond its target
 };
 
 struct TradeoffResult {
     std::vector<std::string> quantities;
     std::vector<std::string> reference_kind;  // per quantity: "analytic" or the reference point
+    // Per quantity: the error bar the cost forecasts aim at, on the deviation's scale (relative
+    // to |reference|; absolute for distances), NaN when there is none, and where it came from.
+    std::vector<double> target;
+    std::vector<std::string> target_kind;  // "given", "base runs' error", "reference runs' error"
     std::vector<TradeoffRow> rows;
     std::vector<std::string> problems;  // quantities asked for but missing, no reference, ...
 };
@@ -68,12 +80,20 @@ void add_pdf_distances(const Study& st, const std::vector<std::string>& outputs,
                        std::vector<Row>& rows, const std::vector<bool>& have,
                        std::vector<std::string>& quantities);
 
+// `n_eff`: per run, the effective samples of each quantity's error bar (as in the run summary;
+// missing: unknown, the error bar alone counts). The cost forecasts read each run's
+// performance.cpu_time and performance.cpu_time_measuring.
 TradeoffResult analyse_tradeoff(const Study& st, const std::vector<std::string>& quantities,
-                                const std::vector<Row>& rows, const std::vector<bool>& have);
+                                const std::vector<Row>& rows, const std::vector<bool>& have,
+                                const std::vector<std::map<std::string, double>>& n_eff = {});
 
 void write_tradeoff(h5::Group& root, const TradeoffResult& t);
 void write_tradeoff_csv(const std::string& path, const TradeoffResult& t);
 // A Markdown table: one line per run, cost and the deviation of every quantity.
 std::string tradeoff_table(const TradeoffResult& t);
+// A Markdown table of the cost forecasts: per run, the CPU seconds to each quantity's target,
+// and the cheapest setting that reaches every target without a bias beyond it ("" without
+// targets).
+std::string tradeoff_forecast_table(const TradeoffResult& t);
 
 }  // namespace gran

@@ -168,6 +168,19 @@ void emit_tradeoff_section(YAML::Emitter& em, const TradeoffRequest& rq, const R
         for (const auto& [q, v] : rq.analytic) em << YAML::Key << q << YAML::Value << v;
         em << YAML::EndMap;
     }
+    if (!rq.target_error.empty()) {
+        em << YAML::Key << "target_error" << YAML::Value << YAML::BeginMap;
+        for (const auto& a : rq.target_error) {
+            const auto eq = a.rfind('=');
+            if (eq == std::string::npos || eq == 0 || eq + 1 >= a.size())
+                throw SceneError(
+                    "gran tradeoff: --target-error expects QUANTITY=0.002 or "
+                    "QUANTITY=1%, got '" +
+                    a + "'");
+            em << YAML::Key << a.substr(0, eq) << YAML::Value << a.substr(eq + 1);
+        }
+        em << YAML::EndMap;
+    }
     em << YAML::EndMap;
 }
 

@@ -31,6 +31,7 @@ struct TradeoffRequest {
     std::vector<std::pair<std::string, std::vector<std::string>>> custom;  // key -> levels
     std::vector<std::string> quantities;                   // empty: the default patterns
     std::vector<std::pair<std::string, double>> analytic;  // quantity -> exact value
+    std::vector<std::string> target_error;                 // "quantity=error bar" (0.002 or 1%)
 };
 
 // The automatic knobs of a scene: every registered knob (KnobRegistry, libgran/study/knob.hpp;

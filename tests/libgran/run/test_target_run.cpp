@@ -72,6 +72,7 @@ TEST(TargetForecast, ScalesTheErrorAsOneOverTheSquareRootOfTheLength) {
     EXPECT_DOUBLE_EQ(f.length, 400);
     EXPECT_DOUBLE_EQ(f.cpu, 2 + 8 * 4.0);
     EXPECT_DOUBLE_EQ(f.stop_length, 506.25);
+    EXPECT_DOUBLE_EQ(f.cpu_at_stop, 2 + 8 * 5.0625);  // what the run spends if it is right
     EXPECT_DOUBLE_EQ(f.cpu_per_quantity[0], 2 + 8 * 4.0);
     const double rel = std::sqrt(2.0 / 20);
     EXPECT_NEAR(f.cpu_low, 2 + 8 * 4 / (1 + rel), 1e-12);
@@ -85,6 +86,13 @@ TEST(TargetForecast, ScalesTheErrorAsOneOverTheSquareRootOfTheLength) {
     const TargetLook b = look_at(t, blocks, 100, 10, 8, nullptr);
     EXPECT_TRUE(b.all_met());
     EXPECT_DOUBLE_EQ(b.quantities[0].relative_uncertainty, 0.5);
+    // A target met at the look: the run stops there, at what it spent (10 s), not earlier.
+    const Forecast met = forecast(t, b, 100);
+    ASSERT_TRUE(met.valid);
+    EXPECT_LT(met.length, 100);
+    EXPECT_DOUBLE_EQ(met.cpu, 10);
+    EXPECT_DOUBLE_EQ(met.cpu_low, 10);
+    EXPECT_DOUBLE_EQ(met.cpu_high, 10);
 }
 
 // A quantity measured over a window that stopped growing reports the same value and error at

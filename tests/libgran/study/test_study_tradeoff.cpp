@@ -96,10 +96,12 @@ TEST(TradeoffAnalysis, NamesQuantitiesItCannotCompare) {
     rows[1] = {{"q", {1, 0.1}}, {"zero", {0, 0}}};
     const auto t = gran::analyse_tradeoff(st, {"q", "zero"}, rows, {true, true});
     EXPECT_EQ(t.quantities, std::vector<std::string>{"q"});
-    ASSERT_EQ(t.problems.size(), 3u);  // no cost column, `missing` unreported, `zero` is 0
+    // No cost column, `missing` unreported, `zero` is 0, and no CPU split for the forecasts.
+    ASSERT_EQ(t.problems.size(), 4u);
     EXPECT_NE(t.problems[0].find("cost"), std::string::npos);
     EXPECT_NE(t.problems[1].find("missing"), std::string::npos);
     EXPECT_NE(t.problems[2].find("0"), std::string::npos);
+    EXPECT_NE(t.problems[3].find("cpu_time_measuring"), std::string::npos);
 }
 
 class TradeoffLadder : public gran::testing::TempDirTest {
@@ -275,6 +277,14 @@ run: {equilibration: 10, measurement: 100}
         f.root().read_doubles("tradeoff/quantities/observables.temperatures.T_mixture/deviation");
     ASSERT_EQ(dev.size(), runs.size());
     for (double d : dev) EXPECT_TRUE(std::isfinite(d));
+    // Each setting's cost to the base run's error bar (the run summaries' cpu_time_measuring
+    // and n_eff), above its measurement-free part and finite; printed as a second table.
+    const auto to_target = f.root().read_doubles(
+        "tradeoff/quantities/observables.temperatures.T_mixture/cpu_to_target");
+    ASSERT_EQ(to_target.size(), runs.size());
+    for (double c : to_target) EXPECT_TRUE(std::isfinite(c) && c > 0) << c;
+    EXPECT_NE(r.output.find("Cost to the same error bar"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(base runs' error)"), std::string::npos) << r.output;
     // The velocity distributions are compared too: the total-variation distance from the
     // reference run's, 0 for the reference itself, between 0 and 1 otherwise.
     const auto dist =
@@ -288,6 +298,28 @@ run: {equilibration: 10, measurement: 100}
             EXPECT_GT(dist[i], 0);
             EXPECT_LT(dist[i], 1);
         }
+    }
+}
+
+TEST_F(TradeoffCommand, ReadsTargetErrorsAndRefusesABadOneAtItsLine) {
+    std::ofstream(path("gas.yaml")) << "dimension: 2\nspecies: [{name: a, count: 50}]\n"
+                                       "box: {packing_fraction: 0.05}\n"
+                                       "run: {measurement: 10}\n";
+    std::ofstream(path("study.yaml")) << "scene: gas.yaml\npoints: [{name: reference}]\n"
+                                         "tradeoff:\n  target_error: {a.b: 2%, c.d: 0.003}\n";
+    const gran::Study st = gran::load_study(path("study.yaml"));
+    ASSERT_EQ(st.tradeoff.target_error.size(), 2u);
+    EXPECT_TRUE(st.tradeoff.target_error[0].relative);
+    EXPECT_DOUBLE_EQ(st.tradeoff.target_error[0].error, 0.02);
+    EXPECT_DOUBLE_EQ(st.tradeoff.target_error[1].error, 0.003);
+    std::ofstream(path("study.yaml")) << "scene: gas.yaml\npoints: [{name: reference}]\n"
+                                         "tradeoff:\n  target_error: {a.b: 150%}\n";
+    try {
+        (void)gran::load_study(path("study.yaml"));
+        FAIL() << "accepted a relative error bar of 150%";
+    } catch (const gran::SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("study.yaml:4"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("target_error.a.b"), std::string::npos) << e.what();
     }
 }
 
