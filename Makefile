@@ -8,12 +8,12 @@ PY := PYTHONPATH=$(CURDIR)/python /usr/bin/python3
 DEB_PACKAGES := cmake g++ ninja-build pkg-config libeigen3-dev libboost-dev libhdf5-dev libfmt-dev \
   libspdlog-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
   python3-h5py python3-numpy python3-matplotlib python3-yaml pybind11-dev python3-dev python3-pytest \
-  python3-mdanalysis paraview
+  python3-mdanalysis paraview libopenmpi-dev openmpi-bin
 # Warnings are errors in CI (CI=true) and whenever GRAN_WERROR=ON is given.
 GRAN_WERROR ?= $(if $(CI),ON,OFF)
 CMAKE_FLAGS ?=
 
-.PHONY: fuzz deps configure build demo test docs validate bench bench-peers format sanitize clean reproduce-barrat-trizac-2002 \
+.PHONY: fuzz deps configure build demo test test-cluster docs validate bench bench-peers format sanitize clean reproduce-barrat-trizac-2002 \
   reproduce-mcnamara-falcon-2005 reproduce-bhateja-2016 tradeoff
 
 deps:
@@ -66,6 +66,14 @@ PEER_PACKAGES := lammps liggghts
 bench-peers: build
 	@$(MAKE) --no-print-directory deps DEB_PACKAGES="$(PEER_PACKAGES)"
 	EDMD=$(EDMD) bench/peers.sh
+
+# A study on a real single-node SLURM cluster (issue 18, docs/cluster.md): Debian's slurmctld,
+# slurmd and munge on localhost (root), a job array with one task stopped by the time-limit
+# warning and resubmitted, the merged results against a local run. About a minute.
+CLUSTER_PACKAGES := slurmctld slurmd slurm-client munge
+test-cluster: build
+	@$(MAKE) --no-print-directory deps DEB_PACKAGES="$(CLUSTER_PACKAGES)"
+	tests/cluster/test_slurm_study.sh $(BUILD_DIR)
 
 # Barrat & Trizac 2002: Tables I-II and Figs. 1-4, 6-9, 13-17 (36 runs on all cores, about 8 min
 # on 2 cores; completed runs are reused). Writes results/barrat-trizac-2002/{figN,tables}.png,

@@ -187,11 +187,15 @@ class CoolingState final : public Observable<D> {
     // every species, a2 of every species, the cooling rate) before the breakdown.
     std::size_t transient_end(std::size_t end) const {
         std::size_t cut = 0;
-        auto consider = [&](std::span<const double> v) {
-            cut = std::max(cut, mser_truncation(v.first(end)));
+        // The samples [from, end) of a series; a truncation d of them ends the transient at
+        // sample from + d.
+        auto consider = [&](std::span<const double> v, std::size_t from = 0) {
+            if (end <= from) return;
+            const std::size_t d = mser_truncation(v.subspan(from, end - from));
+            if (d > 0) cut = std::max(cut, from + d);
         };
-        const std::vector<double> z = cooling_rates();
-        if (end > 1) consider(std::span<const double>(z).subspan(1, end - 1));
+        const std::vector<double> z = cooling_rates();  // z[0] is NaN: no interval before it
+        consider(z, 1);
         for (std::size_t s = 0; s < table_.size(); ++s) {
             consider(a2_[s]);
             if (s != ref_) {

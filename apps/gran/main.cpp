@@ -29,7 +29,11 @@
 #include "libgran/scene/scene_reference.hpp"
 #include "libgran/study/knob.hpp"
 #include "libgran/study/study.hpp"
+#include "libgran/study/study_slurm.hpp"
 #include "libgran/study/tradeoff_ladder.hpp"
+#ifdef GRAN_HAVE_MPI
+#include "apps/gran/study_mpi.hpp"
+#endif
 
 namespace {
 
@@ -156,19 +160,67 @@ void plot_tradeoff(const gran::StudyReport& rep) {
         spdlog::warn("the trade-off plot failed: {}", cmd);
 }
 
-int cmd_study(const std::string& file, const std::string& out, int jobs, bool quiet,
-              bool reuse_any_version = false, bool forecast = false) {
+// What `gran study` is asked to do (CLI11 writes into these fields).
+struct StudyCommand {
+    std::string file, out;
+    int jobs = 0;
+    bool quiet = false, reuse_any_version = false, forecast = false, merge_only = false;
+    bool status = false, slurm = false;
+    int slurm_task = -1;  // an array task of a SLURM study (the scripts pass it)
+    gran::SlurmOptions slurm_options;
+};
+
+// `gran study --slurm`: the scripts, submitted unless --dry-run.
+int submit_to_slurm(const gran::Study& st, const StudyCommand& c, const std::string& outdir) {
+    gran::SlurmOptions so = c.slurm_options;
+    so.study_command = std::filesystem::read_symlink("/proc/self/exe").string();
+    const gran::SlurmSubmission sub = gran::submit_slurm_study(st, c.file, outdir, so);
+    std::cout << fmt::format("job array: {} ({} tasks of up to {} runs)\nmerge job: {}\n",
+                             sub.array_script, sub.tasks, so.runs_per_task, sub.merge_script);
+    if (so.dry_run) {
+        for (const std::string& f : {sub.array_script, sub.merge_script}) {
+            std::ifstream in(f);
+            std::cout << "\n# " << f << "\n" << in.rdbuf();
+        }
+        return 0;
+    }
+    std::cout << fmt::format(
+        "submitted: array job {}, merge job {} (after it)\nstatus: gran study "
+        "{} -o {} --status\n",
+        sub.array_job, sub.merge_job, c.file, outdir);
+    return 0;
+}
+
+int cmd_study(const StudyCommand& c) {
     try {
-        const gran::Study st = gran::load_study(file);
+        const gran::Study st = gran::load_study(c.file);
         gran::StudyOptions opt;
-        opt.output_dir = out;
-        opt.jobs = jobs;
+        opt.output_dir = c.out;
+        opt.jobs = c.jobs;
         opt.gran_binary = std::filesystem::read_symlink("/proc/self/exe").string();
-        opt.progress = !quiet;
-        opt.reuse_any_version = reuse_any_version;
-        opt.forecast = forecast;
+        opt.progress = !c.quiet;
+        opt.reuse_any_version = c.reuse_any_version;
+        opt.forecast = c.forecast;
+        opt.merge_only = c.merge_only;
         opt.interrupt = &g_interrupt;
+        const std::string outdir = c.out.empty() ? st.output_dir : c.out;
+        if (c.status) {
+            std::cout << gran::study_status(st, outdir);
+            return 0;
+        }
+        if (c.slurm) return submit_to_slurm(st, c, outdir);
         stop_on_signals();
+        if (c.slurm_task >= 0)
+            return gran::run_slurm_task(st, opt, c.slurm_task, c.slurm_options.runs_per_task);
+        const bool forecast = c.forecast;
+#ifdef GRAN_HAVE_MPI
+        if (gran::launched_by_mpirun()) {
+            if (forecast)
+                throw gran::SceneError(
+                    "--forecast runs its pilots on one machine: run it without mpirun");
+            return gran::run_study_mpi(st, opt);
+        }
+#endif
         const gran::StudyReport rep = gran::run_study(st, opt);
         if (forecast) {
             std::ifstream md(rep.forecast);
@@ -238,7 +290,12 @@ int cmd_tradeoff(gran::TradeoffRequest treq, const std::vector<std::string>& kno
         std::cerr << "gran: error: " << e.what() << "\n";
         return 2;
     }
-    return cmd_study(file, out, jobs, quiet);
+    StudyCommand c;
+    c.file = file;
+    c.out = out;
+    c.jobs = jobs;
+    c.quiet = quiet;
+    return cmd_study(c);
 }
 
 // What the command line asks for; CLI11 writes into these fields.
@@ -248,11 +305,8 @@ struct CommandLine {
     // run, check
     std::string scene_file, output, resume, recover;
     std::vector<std::string> sets;
-    // study (jobs: tradeoff too)
-    std::string study_file, study_out;
-    int jobs = 0;
-    bool reuse_any_version = false;
-    bool study_forecast = false;
+    StudyCommand study;
+    int jobs = 0;  // tradeoff
     std::string pilot_output;
     // tradeoff
     gran::TradeoffRequest treq;
@@ -302,16 +356,43 @@ CLI::App* add_check(CLI::App& app, CommandLine& cl) {
 CLI::App* add_study(CLI::App& app, CommandLine& cl) {
     auto* study = app.add_subcommand(
         "study", "run a study (a scene swept over points, grids and replicas) on all cores");
-    study->add_option("study", cl.study_file, "study file (YAML), see docs/studies.md")->required();
-    study->add_option("-o,--output", cl.study_out, "result folder (default results/<study>)");
-    study->add_option("-j,--jobs", cl.jobs,
-                      "runs at a time (default: the study's `jobs`, else all cores)");
-    study->add_flag("--forecast", cl.study_forecast,
+    study->add_option("study", cl.study.file, "study file (YAML), see docs/studies.md")->required();
+    study->add_option("-o,--output", cl.study.out, "result folder (default results/<study>)");
+    study->add_option("-j,--jobs", cl.study.jobs,
+                      "runs at a time (default: the study's `jobs`, else all cores; one per MPI "
+                      "rank or SLURM task)");
+    study->add_flag("--forecast", cl.study.forecast,
                     "run only a pilot of each point with run.target_error and write what the "
                     "study is forecast to cost (OUTDIR/<study>.forecast.md)");
-    study->add_flag("--reuse-any-version", cl.reuse_any_version,
+    study->add_flag("--reuse-any-version", cl.study.reuse_any_version,
                     "reuse complete results made by another code version (each is named); by "
                     "default they are rerun");
+    study->add_flag("--status", cl.study.status,
+                    "say which runs are complete, checkpointed, started or not started, and "
+                    "what the SLURM queue holds of the study's jobs; run nothing");
+    study->add_flag("--merge-only", cl.study.merge_only, "run nothing: merge the complete runs");
+    study->add_flag("--slurm", cl.study.slurm,
+                    "write a SLURM job array (a task per --runs-per-task runs) and a merge job "
+                    "after it, and submit both with sbatch (docs/cluster.md)");
+    study->add_option("--partition", cl.study.slurm_options.partition,
+                      "with --slurm: the partition (default: the cluster's)");
+    study->add_option("--time", cl.study.slurm_options.time,
+                      "with --slurm: each task's time limit (default 1:00:00)");
+    study
+        ->add_option("--runs-per-task", cl.study.slurm_options.runs_per_task,
+                     "with --slurm: runs per array task (default 1)")
+        ->check(CLI::PositiveNumber);
+    study
+        ->add_option("--signal-seconds", cl.study.slurm_options.warning_seconds,
+                     "with --slurm: seconds before the time limit at which the runs checkpoint "
+                     "and stop (default 120)")
+        ->check(CLI::PositiveNumber);
+    study->add_flag("--dry-run", cl.study.slurm_options.dry_run,
+                    "with --slurm: write and print the scripts, submit nothing");
+    study
+        ->add_option("--slurm-task", cl.study.slurm_task,
+                     "run the runs of this array task (what the --slurm scripts call)")
+        ->check(CLI::NonNegativeNumber);
     study->fallthrough();
     return study;
 }
@@ -638,9 +719,10 @@ int main(int argc, char** argv) {
 
     if (list->parsed()) return cmd_list(cl.what, cl.markdown);
     if (exporter->parsed()) return cmd_export(cl);
-    if (study->parsed())
-        return cmd_study(cl.study_file, cl.study_out, cl.jobs, cl.quiet, cl.reuse_any_version,
-                         cl.study_forecast);
+    if (study->parsed()) {
+        cl.study.quiet = cl.quiet;
+        return cmd_study(cl.study);
+    }
     if (tradeoff->parsed())
         return cmd_tradeoff(cl.treq, cl.knob_ladders, cl.analytic, cl.tout, cl.jobs, cl.quiet,
                             cl.dry_run);

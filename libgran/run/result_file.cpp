@@ -1,11 +1,42 @@
 #include "libgran/run/result_file.hpp"
 
+#include <unistd.h>
+
+#include <cctype>
 #include <cstdlib>
 #include <span>
 
 #include "libgran/core/build_info.hpp"
 
 namespace gran {
+
+namespace {
+
+// Where the run ran (issue 18): the host, the MPI rank of the `gran study` that started it
+// (-1: none; the launchers' rank variables are inherited by the runs a rank starts), and the
+// SLURM job and array task when a batch system started it. Attributes of /provenance.
+void write_placement(ResultGroup& g) {
+    char host[256] = {};
+    if (gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
+    g.attr("host", std::string(host));
+    std::int64_t rank = -1;
+    for (const char* v : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"}) {
+        if (const char* x = std::getenv(v); x && *x) {
+            rank = std::strtoll(x, nullptr, 10);
+            break;
+        }
+    }
+    g.attr("mpi_rank", rank);
+    for (const char* v : {"SLURM_JOB_ID", "SLURM_ARRAY_JOB_ID", "SLURM_ARRAY_TASK_ID"}) {
+        if (const char* x = std::getenv(v); x && *x) {
+            std::string name(v);
+            for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+            g.attr(name, std::string(x));
+        }
+    }
+}
+
+}  // namespace
 
 void write_provenance(ResultGroup root, const Scene& sc,
                       const std::vector<std::string>& command_line) {
@@ -28,6 +59,7 @@ void write_provenance(ResultGroup root, const Scene& sc,
     code.attr("dirty", std::int64_t(b.dirty));
     code.attr("build_type", b.build_type);
     code.attr("compiler", b.compiler);
+    write_placement(code);
 
     ResultGroup par = file.group("parameters");
     YAML::Emitter em;

@@ -22,6 +22,9 @@ struct StudyRun {
     std::vector<std::pair<std::string, std::string>> overrides;  // key, value (YAML text)
     YAML::Node metadata;  // extra keys of the point (e.g. `paper:` values), kept in the result
     std::string resolved_scene;  // the resolved scene text the run will record (for resume)
+    // The engine's estimate of the run's work (`gran check`: events or particle-steps; 0: none),
+    // to start the longest runs first when a study is spread over MPI ranks.
+    double expected_work = 0;
 };
 
 // The run's overrides as `--set` assignments "key=value".
@@ -84,6 +87,8 @@ struct StudyOptions {
     // first look) and report what the study's targets are forecast to cost
     // (libgran/study/study_forecast.hpp).
     bool forecast = false;
+    // Run nothing: merge the complete runs (the merge job of a SLURM study).
+    bool merge_only = false;
 };
 
 struct StudyReport {

@@ -192,11 +192,13 @@ StudyFit read_fit(const Where& w, const YAML::Node& n) {
     return f;
 }
 
-std::string resolved_scene_text(const Study& st, const StudyRun& run) {
+// The run's resolved scene text (what its result records) and the engine's cost estimate.
+void resolve_scene(const Study& st, StudyRun& run) {
     const Scene sc = load_scene(st.scene, assignments(run));
     YAML::Emitter em;
     em << sc.resolved;
-    return em.c_str();
+    run.resolved_scene = em.c_str();
+    run.expected_work = sc.cost.work;
 }
 
 YAML::Node read_study_yaml(const std::string& path) {
@@ -344,7 +346,7 @@ StudyRun make_run(const Study& st, const Sections& sec, const Point& p, std::siz
     }
     run.name = safe_name(name);
     try {
-        run.resolved_scene = resolved_scene_text(st, run);
+        resolve_scene(st, run);
     } catch (const SceneError& e) {
         throw SceneError(
             fmt::format("{}: run '{}': {}", locate(p.where, p.node), run.name, e.what()));

@@ -183,6 +183,32 @@ void write_summary_group(h5::Group& root, const Study& st, const Table& table,
     }
 }
 
+// Where each complete run ran (its /provenance `host` and `mpi_rank`; a result from before they
+// were recorded: "" and -1), so a merged study shows how the work was spread.
+void write_placement(h5::Group& root, const Study& st, const RunFiles& files,
+                     const std::vector<bool>& have) {
+    std::vector<std::string> hosts;
+    std::vector<std::int64_t> ranks;
+    for (std::size_t i = 0; i < st.runs.size(); ++i) {
+        if (!have[i]) continue;
+        std::string host;
+        std::int64_t rank = -1;
+        try {
+            const h5::File rf = h5::File::open_read(files.result[i]);
+            const h5::Group prov = rf.root().group("provenance");
+            host = prov.read_attr_string("host");
+            rank = static_cast<std::int64_t>(prov.read_attr_double("mpi_rank"));
+        } catch (const std::exception&) {
+            // recorded before placement was
+        }
+        hosts.push_back(host);
+        ranks.push_back(rank);
+    }
+    h5::Group pl = root.group("summary/placement");
+    pl.write_strings("host", hosts);
+    pl.write("mpi_rank", ranks);
+}
+
 void write_performance(h5::Group& root, const StudyReport& rep,
                        std::chrono::steady_clock::time_point started) {
     h5::Group perf = root.group("performance");
@@ -214,6 +240,7 @@ void write_merged_file(const std::string& file, const Study& st, const RunFiles&
         write_study_group(root, st);
         copy_runs(root, st, files, have);
         write_summary_group(root, st, a.table, have);
+        write_placement(root, st, files, have);
         write_fits(root, a.fits);
         if (st.has_tradeoff) write_tradeoff(root, a.tradeoff);
         write_performance(root, rep, started);

@@ -20,7 +20,9 @@
 
 #include "libgran/core/build_info.hpp"
 #include "libgran/core/h5.hpp"
+#include "libgran/run/checkpoint.hpp"
 #include "libgran/study/study.hpp"
+#include "libgran/study/study_exec.hpp"
 #include "libgran/study/study_forecast.hpp"
 #include "libgran/study/study_merge.hpp"
 
@@ -62,14 +64,33 @@ bool reusable(const std::string& file, const std::string& resolved, bool any_ver
     }
 }
 
-// `gran run` of the run to `out`, or (pilot) `gran check` with its pilot's result kept at `out`.
+// A checkpoint of this run, by this code, for this run's resolved scene: an interrupted run
+// (a stopped study, a batch job at its time limit) that `gran run --resume` continues.
+bool resumable(const std::string& out, const StudyRun& run) {
+    const std::string path = checkpoint_path_for(out);
+    if (!fs::exists(path)) return false;
+    try {
+        const Checkpoint c = read_checkpoint(path);
+        return c.header.code_id == build_info().code_id() &&
+               c.header.resolved == run.resolved_scene;
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+// `gran run` of the run to `out` (resumed from its checkpoint when it has one), or (pilot)
+// `gran check` with its pilot's result kept at `out`.
 pid_t spawn_run(const std::string& binary, const std::string& scene, const std::string& out,
                 const StudyRun& run, const std::string& log, bool pilot) {
-    std::vector<std::string> args{
-        binary, "--quiet", pilot ? "check" : "run", scene, pilot ? "--pilot-output" : "-o", out};
-    for (const auto& a : assignments(run)) {
-        args.push_back("--set");
-        args.push_back(a);
+    std::vector<std::string> args{binary, "--quiet", pilot ? "check" : "run"};
+    if (!pilot && resumable(out, run)) {
+        args.insert(args.end(), {"--resume", out});
+    } else {
+        args.insert(args.end(), {scene, pilot ? "--pilot-output" : "-o", out});
+        for (const auto& a : assignments(run)) {
+            args.push_back("--set");
+            args.push_back(a);
+        }
     }
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -103,6 +124,25 @@ std::vector<std::size_t> runs_to_do(const Study& st, const RunFiles& files, bool
         }
     }
     return todo;
+}
+
+// A run's exit: completed (marked in `have`), interrupted by a stop of the study, or failed.
+void count_exit(const Study& st, const RunFiles& files, std::size_t i, int code, bool stopping,
+                std::vector<bool>& have, StudyReport& rep) {
+    if (code == 0) {
+        have[i] = true;
+        ++rep.ran;
+    } else if (code == 3 && stopping) {
+        if (resumable(files.result[i], st.runs[i]))
+            spdlog::warn("{}: interrupted; the next run of the study resumes it from {}",
+                         st.runs[i].name, checkpoint_path_for(files.result[i]));
+        else
+            spdlog::warn("{}: interrupted; partial result {} (run again next time)",
+                         st.runs[i].name, files.result[i]);
+    } else {
+        ++rep.failed;
+        spdlog::error("{} failed (exit {}); see {}", st.runs[i].name, code, files.log[i]);
+    }
 }
 
 // Runs `todo` with at most `jobs` children at a time, until all finished or an interrupt
@@ -172,26 +212,17 @@ class RunPool {
         running_.erase(it);
         ++finished_;
         const double secs = std::chrono::duration<double>(Clock::now() - started).count();
-        finished(i, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), secs);
+        finished(i, exit_code_of(status), secs);
     }
 
     void finished(std::size_t i, int code, double secs) {
-        if (code == 0) {
-            have_[i] = true;
-            ++rep_.ran;
-            if (opt_.progress) {
-                const double el = std::chrono::duration<double>(Clock::now() - t0_).count();
-                const double eta = el / double(finished_) * double(todo_.size() - finished_);
-                spdlog::info("[{}/{}] {} done in {:.1f} s (study ETA {:.0f} s)", finished_,
-                             todo_.size(), st_.runs[i].name, secs, eta);
-            }
-        } else if (code == 3 && stop_) {
-            spdlog::warn("{}: interrupted; partial result {} (not reused next time)",
-                         st_.runs[i].name, files_.result[i]);
-        } else {
-            ++rep_.failed;
-            spdlog::error("{} failed (exit {}); see {}", st_.runs[i].name, code, files_.log[i]);
+        if (code == 0 && opt_.progress) {
+            const double el = std::chrono::duration<double>(Clock::now() - t0_).count();
+            const double eta = el / double(finished_) * double(todo_.size() - finished_);
+            spdlog::info("[{}/{}] {} done in {:.1f} s (study ETA {:.0f} s)", finished_,
+                         todo_.size(), st_.runs[i].name, secs, eta);
         }
+        count_exit(st_, files_, i, code, stop_, have_, rep_);
     }
 
     const Study& st_;
@@ -237,23 +268,67 @@ StudyReport run_pilots(const Study& st, const StudyOptions& opt, const std::stri
 
 }  // namespace
 
+int exit_code_of(int status) {
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+StudyPlan plan_study(const Study& st, const StudyOptions& opt) {
+    StudyPlan p;
+    p.outdir = opt.output_dir.empty() ? st.output_dir : opt.output_dir;
+    p.jobs = opt.jobs > 0  ? opt.jobs
+             : st.jobs > 0 ? st.jobs
+                           : int(std::max(1u, std::thread::hardware_concurrency()));
+    fs::create_directories(fs::path(p.outdir) / "logs");
+    p.files = run_files(st, p.outdir);
+    p.have.assign(st.runs.size(), false);
+    p.todo = runs_to_do(st, p.files, opt.reuse_any_version, p.have, p.report);
+    p.started = Clock::now();
+    return p;
+}
+
+void longest_first(const Study& st, std::vector<std::size_t>& todo) {
+    std::stable_sort(todo.begin(), todo.end(), [&](std::size_t a, std::size_t b) {
+        return st.runs[a].expected_work > st.runs[b].expected_work;
+    });
+}
+
+pid_t start_study_run(const Study& st, const StudyOptions& opt, const RunFiles& files,
+                      std::size_t i) {
+    return spawn_run(opt.gran_binary, st.scene, files.result[i], st.runs[i], files.log[i], false);
+}
+
+void record_run_exit(const Study& st, std::size_t i, int code, bool stopping, StudyPlan& plan) {
+    count_exit(st, plan.files, i, code, stopping, plan.have, plan.report);
+}
+
+void finish_study(const Study& st, StudyPlan& plan) {
+    merge_study(st, plan.outdir, plan.files, plan.have, plan.started, plan.report);
+}
+
 StudyReport run_study(const Study& st, const StudyOptions& opt) {
-    StudyReport rep;
-    const std::string outdir = opt.output_dir.empty() ? st.output_dir : opt.output_dir;
-    const int jobs = opt.jobs > 0  ? opt.jobs
-                     : st.jobs > 0 ? st.jobs
-                                   : int(std::max(1u, std::thread::hardware_concurrency()));
-    if (opt.forecast) return run_pilots(st, opt, outdir, jobs);
-    fs::create_directories(fs::path(outdir) / "logs");
-    const RunFiles files = run_files(st, outdir);
-    std::vector<bool> have(st.runs.size(), false);
-    std::vector<std::size_t> todo = runs_to_do(st, files, opt.reuse_any_version, have, rep);
-    spdlog::info("study {}: {} runs, {} already complete, {} to run on {} cores; results in {}",
-                 st.file, st.runs.size(), rep.reused, todo.size(), jobs, outdir);
-    const Clock::time_point t0 = Clock::now();
-    RunPool(st, opt, files, std::move(todo), jobs, have, rep, t0).run();
-    merge_study(st, outdir, files, have, t0, rep);
-    return rep;
+    if (opt.forecast) {
+        const std::string outdir = opt.output_dir.empty() ? st.output_dir : opt.output_dir;
+        const int jobs = opt.jobs > 0  ? opt.jobs
+                         : st.jobs > 0 ? st.jobs
+                                       : int(std::max(1u, std::thread::hardware_concurrency()));
+        return run_pilots(st, opt, outdir, jobs);
+    }
+    StudyPlan plan = plan_study(st, opt);
+    if (opt.merge_only) {
+        spdlog::info("study {}: merging the {} complete runs of {}", st.file, plan.report.reused,
+                     st.runs.size());
+    } else {
+        spdlog::info("study {}: {} runs, {} already complete, {} to run on {} cores; results in {}",
+                     st.file, st.runs.size(), plan.report.reused, plan.todo.size(), plan.jobs,
+                     plan.outdir);
+        run_locally(st, opt, plan);
+    }
+    finish_study(st, plan);
+    return plan.report;
+}
+
+void run_locally(const Study& st, const StudyOptions& opt, StudyPlan& plan) {
+    RunPool(st, opt, plan.files, plan.todo, plan.jobs, plan.have, plan.report, plan.started).run();
 }
 
 }  // namespace gran
