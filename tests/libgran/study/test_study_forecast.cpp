@@ -19,24 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 using gran::testing::run_gran;
 
-// A heated mixture that reaches its first look (50 collisions per particle) in a fraction of a
-// second.
-const char* kScene = R"(dimension: 2
-particles: 200
-species:
-  - {name: heavy, mass: 3, number_fraction: 0.5}
-  - {name: light, mass: 1, number_fraction: 0.5}
-interactions: {alpha: 0.85}
-box: {packing_fraction: 0.05}
-drivers: [{type: stochastic_thermostat}]
-observables: [{type: temperatures}]
-run:
-  equilibration: 20
-  measurement: 50
-  target_error: {observables.temperatures.ratios.light_over_heavy.gamma: 0.01}
-)";
-
-const char* kStudy = R"(scene: gas.yaml
+// studies/targets/heated-mixture.yaml: 200 disks that reach their first look (50 collisions per
+// particle) in a fraction of a second, with a target of 0.01 on gamma.
+const char* kStudy = R"(scene: )" GRAN_SOURCE_DIR R"(/studies/targets/heated-mixture.yaml
 replicas: 3
 points:
   - {name: loose}
@@ -49,7 +34,6 @@ class StudyForecast : public gran::testing::TempDirTest {
     StudyForecast() : TempDirTest("gran_study_forecast") {}
     void SetUp() override {
         TempDirTest::SetUp();
-        std::ofstream(path("gas.yaml")) << kScene;
         std::ofstream(path("study.yaml")) << kStudy;
     }
 };
@@ -108,8 +92,9 @@ TEST_F(StudyForecast, ReportsEachPointsForecastTimesItsRunsAndRunsNothingElse) {
 }
 
 TEST_F(StudyForecast, CheckRefusesAPilotOutputForASceneWithoutTarget) {
-    const auto r = run_gran({"check", path("gas.yaml"), "--set", "run.target_error=null",
-                             "--pilot-output", path("p.h5")});
+    const auto r =
+        run_gran({"check", std::string(GRAN_SOURCE_DIR) + "/studies/targets/heated-mixture.yaml",
+                  "--set", "run.target_error=null", "--pilot-output", path("p.h5")});
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("no run.target_error"), std::string::npos) << r.output;
 }
