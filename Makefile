@@ -38,8 +38,14 @@ demo: build
 	$(PY) studies/plot_result.py results/demo/vibrated-mixture-2d.h5 -o results/demo/vibrated-mixture-2d.png
 	@echo "demo: results in results/demo/"
 
+# The suite, then the SLURM cluster test (about a minute, needs root to start slurmctld, slurmd
+# and munge; `make test TEST_CLUSTER=0` leaves it out where that is impossible).
+TEST_CLUSTER ?= 1
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE validate
+ifeq ($(TEST_CLUSTER),1)
+	@$(MAKE) --no-print-directory test-cluster
+endif
 
 # docs/scene-reference.md is generated from the declarations in the code (schemas, summaries,
 # descriptions); Docs.SceneReferenceIsUpToDate fails when the committed copy is stale.

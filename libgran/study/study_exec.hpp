@@ -23,8 +23,15 @@ struct StudyPlan {
     std::chrono::steady_clock::time_point started;
 };
 
-// Creates the output folder and finds the reusable results (counted in report.reused).
-StudyPlan plan_study(const Study& st, const StudyOptions& opt);
+// The runs first, ..., first + count - 1 of a study (a SLURM array task's share).
+struct RunRange {
+    std::size_t first = 0;
+    std::size_t count = std::size_t(-1);
+};
+
+// Creates the output folder and finds the reusable results among the runs of `range` (counted
+// in report.reused; the runs outside it are neither checked nor to do).
+StudyPlan plan_study(const Study& st, const StudyOptions& opt, RunRange range = {});
 
 // The runs of `todo` with the largest expected work first (StudyRun::expected_work; equal or
 // unknown work keeps the study's order).

@@ -112,9 +112,11 @@ pid_t spawn_run(const std::string& binary, const std::string& scene, const std::
 
 // The runs to do; the reusable ones are marked in `have` and counted in rep.reused.
 std::vector<std::size_t> runs_to_do(const Study& st, const RunFiles& files, bool any_version,
-                                    std::vector<bool>& have, StudyReport& rep) {
+                                    RunRange range, std::vector<bool>& have, StudyReport& rep) {
     std::vector<std::size_t> todo;
-    for (std::size_t i = 0; i < st.runs.size(); ++i) {
+    const std::size_t end =
+        std::min(st.runs.size(), range.first + std::min(range.count, st.runs.size()));
+    for (std::size_t i = range.first; i < end; ++i) {
         if (reusable(files.result[i], st.runs[i].resolved_scene, any_version) &&
             fs::exists(files.summary[i])) {
             have[i] = true;
@@ -272,7 +274,7 @@ int exit_code_of(int status) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-StudyPlan plan_study(const Study& st, const StudyOptions& opt) {
+StudyPlan plan_study(const Study& st, const StudyOptions& opt, RunRange range) {
     StudyPlan p;
     p.outdir = opt.output_dir.empty() ? st.output_dir : opt.output_dir;
     p.jobs = opt.jobs > 0  ? opt.jobs
@@ -281,7 +283,7 @@ StudyPlan plan_study(const Study& st, const StudyOptions& opt) {
     fs::create_directories(fs::path(p.outdir) / "logs");
     p.files = run_files(st, p.outdir);
     p.have.assign(st.runs.size(), false);
-    p.todo = runs_to_do(st, p.files, opt.reuse_any_version, p.have, p.report);
+    p.todo = runs_to_do(st, p.files, opt.reuse_any_version, range, p.have, p.report);
     p.started = Clock::now();
     return p;
 }

@@ -177,15 +177,13 @@ SlurmSubmission submit_slurm_study(const Study& st, const std::string& study_pat
 int run_slurm_task(const Study& st, const StudyOptions& opt, int task, int runs_per_task) {
     StudyOptions o = opt;
     if (o.jobs <= 0) o.jobs = 1;  // one CPU per task unless asked
-    StudyPlan plan = plan_study(st, o);
     const std::size_t k = std::size_t(std::max(runs_per_task, 1));
     const std::size_t first = std::size_t(std::max(task, 0)) * k;
-    std::vector<std::size_t> mine;
-    for (std::size_t i : plan.todo)
-        if (i >= first && i < first + k) mine.push_back(i);
-    plan.todo = mine;
+    // Only this task's runs are checked for reuse: a task of a 10^4-run study opens its own
+    // few result files, not all of them.
+    StudyPlan plan = plan_study(st, o, RunRange{first, k});
     spdlog::info("study {}: array task {} (runs {}-{} of {}): {} to run", st.file, task, first,
-                 std::min(first + k, st.runs.size()) - 1, st.runs.size(), mine.size());
+                 std::min(first + k, st.runs.size()) - 1, st.runs.size(), plan.todo.size());
     run_locally(st, o, plan);
     return plan.report.interrupted ? 3 : plan.report.failed > 0 ? 1 : 0;
 }
