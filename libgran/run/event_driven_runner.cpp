@@ -133,7 +133,10 @@ class EventDrivenRunner final : public EngineRunner<D> {
                 const double at = engine_.now();
                 engine_.synchronize();
                 d.kick(engine_.particles_for_update(), *species_);
-                engine_.velocities_changed();
+                // Every event is predicted again at the next kick: none later is looked for.
+                double next = kInf;
+                for (auto& other : drivers_) next = std::min(next, other->next_kick());
+                engine_.velocities_changed(next);
                 kick_updates_ += engine_.particles().size();
                 if (!(d.next_kick() > at)) {  // the time would never advance again
                     failure_ = fmt::format(

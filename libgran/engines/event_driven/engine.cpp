@@ -212,7 +212,7 @@ void EventDrivenEngine<D>::predict_in_shell(std::uint32_t i) {
 }
 
 template <int D>
-void EventDrivenEngine<D>::predict_all() {
+void EventDrivenEngine<D>::predict_all(double horizon) {
     // Every pair of neighbours is met twice in a per-particle pass (from i and from j), and after a
     // thermostat kick such passes are most of a heated run's work. Here each pair is met once: i
     // meets the particles stored after it in its own cell and every particle of the forward half
@@ -249,10 +249,52 @@ void EventDrivenEngine<D>::predict_all() {
             partner[j] = std::int32_t(i);
         }
     };
+    // With a horizon (the next thermostat kick, when every event is predicted again) most pairs
+    // cannot touch before it, and multiplications alone tell them: the squared gap
+    // f(s) = c + 2 b s + dv^2 s^2 stays positive on [0, h] when the pair recedes (b >= 0), or when
+    // its minimum over [0, h] is positive (f(h) if the closest approach comes later, else
+    // c - b^2 / dv^2, the sign of -disc). The test is branch-free (approaching or not is a coin
+    // flip) and compacts the pairs left, which meet() times as without a horizon. h is widened by
+    // 1e-6 of itself so that round-off never drops a collision before the horizon.
+    const bool limited = horizon < kInf;
+    const double h = std::max(horizon, 0.0) * (1 + 1e-6) + 1e-300;
+    std::vector<std::uint32_t> near;
+    auto meet_before_horizon = [&](std::uint32_t i, const std::uint32_t* buf, std::size_t m,
+                                   bool only_later) __attribute__((always_inline)) {
+        if (m < 4) {  // too few for the two passes to pay (dilute gases): time them all
+            for (std::size_t k = 0; k < m; ++k)
+                if (!only_later || buf[k] > i) meet(i, buf[k]);
+            return;
+        }
+        if (near.size() < m) near.resize(2 * m);
+        std::uint32_t* out = near.data();
+        std::size_t kept = 0;
+        const Vec<D> ri = r[i], vi = v[i];
+        const double radius_i = radius[species[i]];
+        for (std::size_t k = 0; k < m; ++k) {
+            const std::uint32_t j = buf[k];
+            const Vec<D> dr = box_.separation(ri, r[j]);
+            const Vec<D> dv = vi - v[j];
+            const double sigma = radius_i + radius[species[j]];
+            const double b = dr.dot(dv);
+            const double dv2 = dv.squaredNorm();
+            const double c = dr.squaredNorm() - sigma * sigma;
+            const bool late = b + dv2 * h < 0.0;
+            const bool touch =
+                (late & (c + h * (2.0 * b + dv2 * h) <= 0.0)) | (!late & (b * b - dv2 * c > 0.0));
+            out[kept] = j;
+            kept += std::size_t((b < 0.0) & touch & (!only_later | (j > i)));
+        }
+        for (std::size_t q = 0; q < kept; ++q) meet(i, out[q]);
+    };
     if (shells_on_) {
         // Every pair in the lists once, from its lower index.
         for (std::uint32_t i = 0; i < n; ++i) {
             const std::uint32_t* list = shells_.list(i);
+            if (limited) {
+                meet_before_horizon(i, list, shells_.size(i), true);
+                continue;
+            }
             for (std::size_t k = 0, m = shells_.size(i); k < m; ++k) {
                 if (list[k] > i) meet(i, list[k]);
             }
@@ -264,10 +306,16 @@ void EventDrivenEngine<D>::predict_all() {
         const std::int32_t own = cells_.cell_of(i);
         std::size_t m = cells_.gather(&own, 1);
         const std::uint32_t* buf = cells_.candidates();
+        std::int32_t cells[CellList<D>::kMaxNeighbours];
+        if (limited) {
+            meet_before_horizon(i, buf, m, true);
+            m = cells_.gather(cells, cells_.forward_neighbours(i, cells));
+            meet_before_horizon(i, buf, m, false);
+            continue;
+        }
         for (std::size_t k = 0; k < m; ++k) {
             if (buf[k] > i) meet(i, buf[k]);
         }
-        std::int32_t cells[CellList<D>::kMaxNeighbours];
         m = cells_.gather(cells, cells_.forward_neighbours(i, cells));
         for (std::size_t k = 0; k < m; ++k) meet(i, buf[k]);
     }

@@ -131,9 +131,12 @@ class EventDrivenEngine {
     // Brings every particle to the current time (positions exact at now()).
     void synchronize();
     // Velocity access for drivers: call synchronize() first, change velocities, then
-    // velocities_changed() to invalidate and recompute every pending event.
+    // velocities_changed() to invalidate and recompute every pending event. `next_change`: the
+    // absolute time at which the velocities will change again (a thermostat's next kick), when
+    // every event is recomputed anyway: collisions later than it are not looked for (the ones
+    // before it are found exactly as without it, so the run is the same bit for bit).
     Particles<D>& particles_for_update() { return p_; }
-    void velocities_changed();
+    void velocities_changed(double next_change = kInf);
     // Particles are stored in cell order and re-sorted now and then (memory locality), so the
     // storage index of a particle changes; ids()[k] is the original index (placement order) of the
     // particle stored at k. Collision records carry original ids.
@@ -186,8 +189,9 @@ class EventDrivenEngine {
     }
     void predict_after_crossing(std::uint32_t i, int axis, int dir);
     // predict() for every particle (all at now_), each pair's collision time computed once
-    // instead of once from each side; the heap is rebuilt by the caller.
-    void predict_all();
+    // instead of once from each side; the heap is rebuilt by the caller. Collisions later than
+    // `horizon` (relative time) need not be found.
+    void predict_all(double horizon = kInf);
     // Earliest collision of i with the candidates of the given cells, if before best.
     void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
                     std::int32_t& partner);

@@ -27,10 +27,10 @@ void EventDrivenEngine<D>::synchronize() {
 }
 
 template <int D>
-void EventDrivenEngine<D>::velocities_changed() {
+void EventDrivenEngine<D>::velocities_changed(double next_change) {
     synchronize();
     for (std::uint32_t i = 0; i < p_.size(); ++i) ++count_[i];
-    predict_all();
+    predict_all(next_change - t_origin_ - now_);
     events_.rebuild();
     ++counters_.full_reschedules;
 }
@@ -80,11 +80,11 @@ void EventDrivenEngine<D>::checkpoint(StateArchive& ar) {
 
 template void EventDrivenEngine<2>::rebase_time();
 template void EventDrivenEngine<2>::synchronize();
-template void EventDrivenEngine<2>::velocities_changed();
+template void EventDrivenEngine<2>::velocities_changed(double);
 template void EventDrivenEngine<2>::sort_by_cell();
 template void EventDrivenEngine<3>::rebase_time();
 template void EventDrivenEngine<3>::synchronize();
-template void EventDrivenEngine<3>::velocities_changed();
+template void EventDrivenEngine<3>::velocities_changed(double);
 template void EventDrivenEngine<3>::sort_by_cell();
 template void EventDrivenEngine<2>::checkpoint(StateArchive&);
 template void EventDrivenEngine<3>::checkpoint(StateArchive&);
