@@ -212,12 +212,13 @@ void DemEngine<D>::reevaluate_forces() {
 }
 
 template <int D>
-void DemEngine<D>::step() {
+template <bool ClosingKick>
+void DemEngine<D>::open_step() {
     const std::size_t n = p_.size();
     // Largest displacement since the last build, per thread (a maximum: the same for any split).
     std::array<double, kMaxThreads> moved2{};
     parallel_chunks(threads_, n, [this, &moved2](std::size_t part, std::size_t i0, std::size_t i1) {
-        moved2[part] = kick_drift(i0, i1);
+        moved2[part] = kick_drift<ClosingKick>(i0, i1);
     });
     ++steps_;
     ++counters_.steps;
@@ -225,11 +226,24 @@ void DemEngine<D>::step() {
     // particles moved by more than skin / 2 each.
     if (*std::max_element(moved2.begin(), moved2.end()) > 0.25 * skin_ * skin_) rebuild();
     accumulate_forces(dt_);  // 3. forces at t + dt (f_, tau_ were zeroed by kick_drift)
-    parallel_chunks(threads_, n,
+}
+
+template <int D>
+void DemEngine<D>::step() {
+    steps(1);
+}
+
+template <int D>
+void DemEngine<D>::steps(std::uint64_t k) {
+    if (k == 0) return;
+    open_step<false>();
+    for (std::uint64_t s = 1; s < k; ++s) open_step<true>();
+    parallel_chunks(threads_, p_.size(),
                     [this](std::size_t, std::size_t i0, std::size_t i1) { kick(i0, i1); });
 }
 
 template <int D>
+template <bool ClosingKick>
 double DemEngine<D>::kick_drift(std::size_t i0, std::size_t i1) {
     const double h = 0.5 * dt_, dt = dt_;
     const Vec<D> g = g_;
@@ -249,6 +263,7 @@ double DemEngine<D>::kick_drift(std::size_t i0, std::size_t i1) {
     double max_disp2 = 0;
     for (std::size_t i = i0; i < i1; ++i) {
         const Vec<D> a = inv_mass[species[i]] * f[i] + g;
+        if constexpr (ClosingKick) v[i] += h * a;  // 4. of the previous step, as kick() does it
         f[i].setZero();            // consumed: the forces of t + dt accumulate here
         v[i] += h * a;             // 1. half kick: v(t + dt/2)
         v_pred[i] = v[i] + h * a;  //    predictor for the dampers: ~v(t + dt)
@@ -276,6 +291,7 @@ double DemEngine<D>::kick_drift(std::size_t i0, std::size_t i1) {
         AngVec<D>* w_pred = w_pred_.data();
         AngVec<D>* tau = tau_.data();
         for (std::size_t i = i0; i < i1; ++i) {
+            if constexpr (ClosingKick) w[i] += (h * inv_inertia[species[i]]) * tau[i];  // as kick()
             const AngVec<D> alpha = inv_inertia[species[i]] * tau[i];
             tau[i] = ang_zero<D>();
             w[i] += h * alpha;
@@ -380,7 +396,13 @@ typename DemEngine<D>::Stop DemEngine<D>::advance(double t_limit,
             stop = Stop::Interrupted;
             break;
         }
-        step();
+        // The steps up to the limit or the next interrupt check, fused (steps()): as many as
+        // the loop of single steps would make, by the same test of now().
+        std::uint64_t k = 1;
+        const std::uint64_t room = interrupt ? 1024 - ((check - 1) & 1023u) : 1024;
+        while (k < room && t_start_ + double(steps_ + k) * dt_ < t_limit) ++k;
+        steps(k);
+        if (interrupt) check += std::uint32_t(k - 1);
     }
     std::fill(p_.t.begin(), p_.t.end(), now());
     return stop;

@@ -61,6 +61,7 @@ struct DemCounters {
     std::uint64_t contacts = 0;         // particle-particle contacts formed
     std::uint64_t wall_contacts = 0;    // particle-wall contacts formed
     std::uint64_t active_contacts = 0;  // particle-particle contacts at the last step
+    std::uint64_t active_contact_steps = 0;  // their sum over the steps (a mean contact number)
     std::uint64_t rebuilds = 0;         // neighbour-list builds
     double max_overlap = 0;             // largest delta / sigma_ij seen (a wall: delta / sigma_i)
 };
@@ -112,7 +113,11 @@ class DemEngine {
     // Whole steps until now() >= t_limit: the last step is not shortened, so now() ends in
     // [t_limit, t_limit + dt). Checks *interrupt every 1024 steps.
     Stop advance(double t_limit, const std::atomic<bool>* interrupt = nullptr);
+    // One step; steps(k): k steps, the same bits as k calls of step(), with each step's closing
+    // half kick done in the same pass as the next step's opening half kick and drift (one sweep
+    // over the particles fewer per step: the integrator is most of a dilute bed's memory traffic).
     void step();
+    void steps(std::uint64_t k);
 
     double now() const { return t_start_ + double(steps_) * dt_; }
     double dt() const { return dt_; }
@@ -224,9 +229,15 @@ class DemEngine {
     void sum_pair_forces();
     void add_touched_pair_forces();
     // Step stages over particles [i0, i1): the first half kick and the drift (returns the
-    // largest squared displacement since the last build), and the second half kick.
+    // largest squared displacement since the last build), preceded, with ClosingKick, by the
+    // previous step's second half kick; and that second half kick alone.
+    template <bool ClosingKick>
     double kick_drift(std::size_t i0, std::size_t i1);
     void kick(std::size_t i0, std::size_t i1);
+    // A step's opening pass (kick_drift), the list check and the forces: all of a step but its
+    // closing half kick.
+    template <bool ClosingKick>
+    void open_step();
 
     Box<D> box_;
     ContactTable contacts_;

@@ -67,6 +67,7 @@ void DemEngine<D>::pair_forces(double dt_advance) {
     }
     counters_.contacts += total.formed;
     counters_.active_contacts = total.active;
+    counters_.active_contact_steps += total.active;
     counters_.max_overlap = total.worst;
 }
 
