@@ -177,9 +177,10 @@ inline LinearDashpotContact linear_dashpot_contact(double k_n, double m_eff, dou
 
 // Eqs. (A5), (A7), (A8). delta > 0, |n| = 1, g = contact_velocity(...).
 template <int D>
-inline ContactForce<D> linear_dashpot_force(const LinearDashpotContact& p, double delta,
-                                            const Vec<D>& n, const Vec<D>& g, double l_i,
-                                            double l_j) {
+[[gnu::always_inline]] inline ContactForce<D> linear_dashpot_force(const LinearDashpotContact& p,
+                                                                   double delta, const Vec<D>& n,
+                                                                   const Vec<D>& g, double l_i,
+                                                                   double l_j) {
     const double g_n = g.dot(n);
     const double f_n = p.k_n * delta - p.gamma_n * g_n;  // (A5)
     const Vec<D> g_t = g - g_n * n;

@@ -24,8 +24,10 @@ struct LinearDashpot : soft_contact::LawBase<LinearDashpotContact> {
         return c;
     }
     template <int D>
-    static ContactForce<D> force(const Pair& c, double delta, const Vec<D>& n, const Vec<D>& g,
-                                 double l_i, double l_j, Vec<D>& /*spring*/) {
+    [[gnu::always_inline]] static ContactForce<D> force(const Pair& c, double delta,
+                                                        const Vec<D>& n, const Vec<D>& g,
+                                                        double l_i, double l_j,
+                                                        Vec<D>& /*spring*/) {
         return linear_dashpot_force<D>(c.contact, delta, n, g, l_i, l_j);
     }
     static double elastic_energy(const Pair& c, double delta, double /*spring2*/) {
