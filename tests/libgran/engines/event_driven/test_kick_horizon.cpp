@@ -13,21 +13,15 @@
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/placement.hpp"
 #include "tests/support/contacts.hpp"
+#include "tests/support/event_driven_scenes.hpp"
 #include "tests/support/periodic_cube.hpp"
 
 namespace gran {
 namespace {
 
-template <int D>
-class CollisionLog final : public CollisionSink<D> {
-  public:
-    void on_collision(const CollisionRecord<D>& c) override {
-        pairs.emplace_back(std::min(c.i, c.j), std::max(c.i, c.j));
-        times.push_back(c.time);
-    }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    std::vector<double> times;
-};
+using testing::bidisperse;
+using testing::CollisionLog;
+using testing::placed;
 
 struct KickedRun {
     double interval = 0;  // between kicks
@@ -64,16 +58,6 @@ CollisionLog<D> run_kicked(const Box<D>& box, const SpeciesTable& t, const Conta
     return log;
 }
 
-template <int D>
-Particles<D> placed(const Box<D>& box, const SpeciesTable& t, const ContactTable& c,
-                    std::uint64_t seed) {
-    Rng rng = make_rng(seed, Stream::Placement);
-    Particles<D> p = place_random<D>(box, t, rng);
-    testing::allocate_rotation<D>(p, c);
-    maxwellian_velocities<D>(p, t, 1.0, rng);
-    return p;
-}
-
 // Chaos amplifies round-off (a collision found from the other partner's side is computed in the
 // other order), so the two runs agree collision by collision only for a while: the first
 // `agree` collisions are compared, pairs exactly and times to 1e-9.
@@ -87,11 +71,16 @@ void expect_same_collisions(const CollisionLog<D>& a, const CollisionLog<D>& b, 
     }
 }
 
-SpeciesTable bidisperse(std::size_t n_big, std::size_t n_small, double small_diameter) {
-    SpeciesTable t;
-    t.species.push_back(Species{"big", 1.0, 1.0, 0.4, n_big});
-    t.species.push_back(Species{"small", 0.5, small_diameter, 0.4, n_small});
-    return t;
+// The run told the next kick (horizon: one interval) against the run without a horizon: the
+// first 1500 collisions.
+template <int D>
+void expect_horizon_changes_no_collision(const Box<D>& box, const SpeciesTable& t,
+                                         const ContactTable& c, const Particles<D>& p,
+                                         KickedRun k) {
+    const auto full = run_kicked<D>(box, t, c, p, k);
+    k.horizon = 1.0;
+    const auto limited = run_kicked<D>(box, t, c, p, k);
+    expect_same_collisions<D>(full, limited, 1500);
 }
 
 // Kicks every ~1/8 of the mean free time (the thermostat's default), 1500 collisions.
@@ -100,11 +89,7 @@ TEST(KickHorizon, EngineToldTheNextKickMeetsTheSameCollisionsInADenseInelasticSp
     const auto c = testing::contacts_of(t, "{alpha: 0.8}");
     const Box<3> box = testing::cube_for<3>(t, 0.3, true);
     const Particles<3> p = placed<3>(box, t, c, 41);
-    KickedRun k{0.01, 200, 0.1, 0.0, 0.0};
-    const auto full = run_kicked<3>(box, t, c, p, k);
-    k.horizon = 1.0;
-    const auto limited = run_kicked<3>(box, t, c, p, k);
-    expect_same_collisions<3>(full, limited, 1500);
+    expect_horizon_changes_no_collision<3>(box, t, c, p, {0.01, 200, 0.1, 0.0, 0.0});
 }
 
 TEST(KickHorizon, EngineToldTheNextKickMeetsTheSameCollisionsOfRoughSpheresOnNeighbourShells) {
@@ -112,11 +97,7 @@ TEST(KickHorizon, EngineToldTheNextKickMeetsTheSameCollisionsOfRoughSpheresOnNei
     const auto c = testing::contacts_of(t, "{alpha: 0.9, beta: 0.3}");
     const Box<3> box = testing::cube_for<3>(t, 0.4, true);
     const Particles<3> p = placed<3>(box, t, c, 42);
-    KickedRun k{0.005, 200, 0.1, 0.0, 0.5};
-    const auto full = run_kicked<3>(box, t, c, p, k);
-    k.horizon = 1.0;
-    const auto limited = run_kicked<3>(box, t, c, p, k);
-    expect_same_collisions<3>(full, limited, 1500);
+    expect_horizon_changes_no_collision<3>(box, t, c, p, {0.005, 200, 0.1, 0.0, 0.5});
 }
 
 TEST(KickHorizon, EngineToldTheNextKickMeetsTheSameCollisionsOfDisksBetweenWalls) {
@@ -125,11 +106,7 @@ TEST(KickHorizon, EngineToldTheNextKickMeetsTheSameCollisionsOfDisksBetweenWalls
     Box<2> box = testing::cube_for<2>(t, 0.4, true);
     box.periodic[1] = false;  // static walls at y = 0 and y = L
     const Particles<2> p = placed<2>(box, t, c, 43);
-    KickedRun k{0.02, 200, 0.1, 0.0, 0.0};
-    const auto full = run_kicked<2>(box, t, c, p, k);
-    k.horizon = 1.0;
-    const auto limited = run_kicked<2>(box, t, c, p, k);
-    expect_same_collisions<2>(full, limited, 1500);
+    expect_horizon_changes_no_collision<2>(box, t, c, p, {0.02, 200, 0.1, 0.0, 0.0});
 }
 
 // The comparison can fail: told the next kick comes after half the interval, the engine misses

@@ -14,17 +14,15 @@
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/placement.hpp"
 #include "tests/support/contacts.hpp"
+#include "tests/support/event_driven_scenes.hpp"
 #include "tests/support/periodic_cube.hpp"
 
 namespace gran {
 namespace {
 
-SpeciesTable bidisperse(std::size_t n_big, std::size_t n_small, double small_diameter) {
-    SpeciesTable t;
-    t.species.push_back(Species{"big", 1.0, 1.0, 0.4, n_big});
-    t.species.push_back(Species{"small", 0.5, small_diameter, 0.4, n_small});
-    return t;
-}
+using testing::bidisperse;
+using testing::CollisionLog;
+using testing::placed;
 
 // Every list against a brute-force search over all pairs of shell centres.
 template <int D>
@@ -104,18 +102,6 @@ TEST(PairCollisionTime, BranchlessFormIsBitForBitTheBranchedOne) {
     EXPECT_EQ(pair_collision_time_branchless<2>(Vec<2>(2, 0), Vec<2>(0, 1), 1.0), kInf);
 }
 
-// The collisions an engine meets, in order: original ids and times.
-template <int D>
-class CollisionLog final : public CollisionSink<D> {
-  public:
-    void on_collision(const CollisionRecord<D>& c) override {
-        pairs.emplace_back(std::min(c.i, c.j), std::max(c.i, c.j));
-        times.push_back(c.time);
-    }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    std::vector<double> times;
-};
-
 template <int D>
 CollisionLog<D> log_collisions(const Box<D>& box, const SpeciesTable& t, const ContactTable& c,
                                const Particles<D>& p, double skin, std::uint64_t collisions) {
@@ -147,16 +133,6 @@ void expect_same_collisions(const Box<D>& box, const SpeciesTable& t, const Cont
         ASSERT_EQ(cells.pairs[k], shells.pairs[k]) << "collision " << k;
         ASSERT_NEAR(cells.times[k], shells.times[k], 1e-9) << "collision " << k;
     }
-}
-
-template <int D>
-Particles<D> placed(const Box<D>& box, const SpeciesTable& t, const ContactTable& c,
-                    std::uint64_t seed) {
-    Rng rng = make_rng(seed, Stream::Placement);
-    Particles<D> p = place_random<D>(box, t, rng);
-    testing::allocate_rotation<D>(p, c);
-    maxwellian_velocities<D>(p, t, 1.0, rng);
-    return p;
 }
 
 TEST(EventDrivenEngine, NeighbourShellsMeetTheCellsCollisionsInADenseElasticMixtureOfSpheres) {
