@@ -199,7 +199,7 @@ void DemEngine<D>::place_walls() {
 
 template <int D>
 void DemEngine<D>::rebuild() {
-    list_.build(box_, p_.r, p_.species);
+    list_.build(p_.r, p_.species, threads_);
     std::fill(disp_.begin(), disp_.end(), Vec<D>::Zero());
     ++counters_.rebuilds;
 }
@@ -261,20 +261,27 @@ double DemEngine<D>::kick_drift(std::size_t i0, std::size_t i1) {
     Vec<D>* disp = disp_.data();
     std::array<std::int32_t, D>* image = p_.image.data();
     double max_disp2 = 0;
+    // Each particle's vectors loaded once into registers and stored once: the stores cannot
+    // then force reloads (they might alias the other arrays). The arithmetic is the same
+    // operations in the same order as v += h a twice, v_pred = v + h a, r += dt v.
     for (std::size_t i = i0; i < i1; ++i) {
         const Vec<D> a = inv_mass[species[i]] * f[i] + g;
-        if constexpr (ClosingKick) v[i] += h * a;  // 4. of the previous step, as kick() does it
-        f[i].setZero();            // consumed: the forces of t + dt accumulate here
-        v[i] += h * a;             // 1. half kick: v(t + dt/2)
-        v_pred[i] = v[i] + h * a;  //    predictor for the dampers: ~v(t + dt)
-        const Vec<D> dr = dt * v[i];
-        r[i] += dr;  // 2. drift: r(t + dt)
-        disp[i] += dr;
-        max_disp2 = std::max(max_disp2, disp[i].squaredNorm());
+        const Vec<D> ha = h * a;
+        Vec<D> vi = v[i];
+        if constexpr (ClosingKick) vi += ha;  // 4. of the previous step, as kick() does it
+        vi += ha;                             // 1. half kick: v(t + dt/2)
+        f[i].setZero();                       // consumed: the forces of t + dt accumulate here
+        v[i] = vi;
+        v_pred[i] = vi + ha;  //    predictor for the dampers: ~v(t + dt)
+        const Vec<D> dr = dt * vi;
+        Vec<D> ri = r[i] + dr;  // 2. drift: r(t + dt)
+        const Vec<D> di = disp[i] + dr;
+        disp[i] = di;
+        max_disp2 = std::max(max_disp2, di.squaredNorm());
         for (std::size_t k = 0; k < std::size_t(D); ++k) {
             const double L = period[k];
             if (L == 0) continue;
-            double& x = r[i][int(k)];
+            double& x = ri[int(k)];
             if (x < 0) {
                 x += L;
                 if (x >= L) x = 0;  // -tiny + L rounded to L
@@ -284,6 +291,7 @@ double DemEngine<D>::kick_drift(std::size_t i0, std::size_t i1) {
                 ++image[i][k];
             }
         }
+        r[i] = ri;
     }
     if (p_.rotating()) {
         const double* inv_inertia = inv_inertia_.data();
@@ -291,11 +299,15 @@ double DemEngine<D>::kick_drift(std::size_t i0, std::size_t i1) {
         AngVec<D>* w_pred = w_pred_.data();
         AngVec<D>* tau = tau_.data();
         for (std::size_t i = i0; i < i1; ++i) {
-            if constexpr (ClosingKick) w[i] += (h * inv_inertia[species[i]]) * tau[i];  // as kick()
-            const AngVec<D> alpha = inv_inertia[species[i]] * tau[i];
+            const double ii = inv_inertia[species[i]];
+            const AngVec<D> ti = tau[i];
+            AngVec<D> wi = w[i];
+            if constexpr (ClosingKick) wi += (h * ii) * ti;  // as kick()
+            const AngVec<D> halpha = h * (ii * ti);
             tau[i] = ang_zero<D>();
-            w[i] += h * alpha;
-            w_pred[i] = w[i] + h * alpha;
+            wi += halpha;
+            w[i] = wi;
+            w_pred[i] = wi + halpha;
         }
     }
     return max_disp2;
@@ -321,7 +333,9 @@ void DemEngine<D>::kick(std::size_t i0, std::size_t i1) {
 }
 
 // The touched entries of every thread, in increasing entry order (the threads' shares are
-// consecutive ranges), added on one thread as the single-threaded loop adds them.
+// consecutive ranges), added as the single-threaded loop adds them. Each thread reads them all
+// and adds only into its own range of particles: every particle still receives its contacts in
+// entry order, so the sums are the same bits for any split.
 template <int D>
 void DemEngine<D>::add_touched_pair_forces() {
     const bool rot = p_.rotating();
@@ -332,17 +346,21 @@ void DemEngine<D>::add_touched_pair_forces() {
     const AngVec<D>* ptj = pair_torque_j_.data();
     Vec<D>* f = f_.data();
     AngVec<D>* tau = tau_.data();
-    for (const std::vector<std::uint32_t>& part : touched_) {
-        for (const std::uint32_t k : part) {
-            const std::uint32_t i = owner[k], j = partner[k];
-            f[i] += pf[k];
-            f[j] -= pf[k];
-            if (rot) {
-                tau[i] += pti[k];
-                tau[j] += ptj[k];
+    parallel_chunks(threads_, p_.size(), [&](std::size_t, std::size_t x0, std::size_t x1) {
+        for (const std::vector<std::uint32_t>& part : touched_) {
+            for (const std::uint32_t k : part) {
+                const std::uint32_t i = owner[k], j = partner[k];
+                if (i >= x0 && i < x1) {
+                    f[i] += pf[k];
+                    if (rot) tau[i] += pti[k];
+                }
+                if (j >= x0 && j < x1) {
+                    f[j] -= pf[k];
+                    if (rot) tau[j] += ptj[k];
+                }
             }
         }
-    }
+    });
 }
 
 // Each particle's pair contacts summed from the per-entry slots of the threaded force loop

@@ -57,8 +57,8 @@ void DemEngine<D>::pair_forces(double dt_advance) {
                                                      &touched_[part]);
                         });
         for (const PairTally& t : tallies_) total.add(t);
-        // Few contacts (a dilute gas): adding them on one thread, in entry order, costs less
-        // than each particle visiting all its entries.
+        // Few contacts (a dilute gas): adding the touched entries in entry order (each thread
+        // into its own particles) costs less than each particle visiting all its entries.
         if (4 * total.active < p_.size()) {
             add_touched_pair_forces();
         } else {
@@ -74,8 +74,8 @@ void DemEngine<D>::pair_forces(double dt_advance) {
 // The contacts of entries [k0, k1): summed into f_, tau_ (Slots false) or stored in the entries'
 // slots with their entries appended to `touched` (Slots true); the tallies added to `tally`. Raw
 // pointers in locals throughout (the byte stores to the contact flags may alias anything, which
-// would reload every vector's data pointer per entry); nothing is written for an entry that neither
-// touches nor touched.
+// would reload every vector's data pointer per entry). Each entry's contact flag is written (a
+// byte); its force slot only if it touches.
 template <int D>
 template <class L, bool Rot, bool Slots>
 void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1, PairTally& tally,
@@ -118,80 +118,103 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
     Vec<D>* slot_force = pair_force_.data();
     AngVec<D>* slot_torque_i = pair_torque_i_.data();
     AngVec<D>* slot_torque_j = pair_torque_j_.data();
-    // One flat loop over the entries (no per-row branches: most rows of a dilute gas are empty).
-    for (std::size_t k = k0; k < k1; ++k) {
-        const std::uint32_t i = owner[k], j = partner[k];
-        const std::uint32_t si = species[i], sj = species[j];
-        const typename L::Pair& P = params[class_of[si] * classes + class_of[sj]];
-        const double sigma_ij = sigma[si * ns + sj];
-        std::array<double, D> dc;
-        double dist2 = 0;
-        for (std::size_t a = 0; a < std::size_t(D); ++a) {
-            double x = r[i][int(a)] - r[j][int(a)];
-            x = x > half[a] ? x - period[a] : (x < -half[a] ? x + period[a] : x);
-            dc[a] = x;
-            dist2 += x * x;
+    // Blocks of entries in three passes, so that the square roots and divisions of different
+    // contacts overlap instead of each heading one contact's chain of dependent operations:
+    //  1. every entry's separation, and whether it touches (no branch), its flag updated;
+    //  2. the distances and their inverses of the touching ones (independent iterations);
+    //  3. their contacts, in increasing entry order as one loop over the entries would.
+    // The operations and their order per contact are those of one loop: the same bits.
+    constexpr std::size_t kBlock = 64;
+    constexpr std::uint32_t kFormed = 0x80000000u;
+    std::array<std::uint32_t, kBlock> hit;
+    std::array<std::array<double, D>, kBlock> sep;
+    std::array<double, kBlock> dist_of, inv_dist;
+    for (std::size_t b0 = k0; b0 < k1; b0 += kBlock) {
+        const std::size_t b1 = std::min(k1, b0 + kBlock);
+        std::size_t m = 0;
+        for (std::size_t k = b0; k < b1; ++k) {
+            const std::uint32_t i = owner[k], j = partner[k];
+            const double sigma_ij = sigma[species[i] * ns + species[j]];
+            double dist2 = 0;
+            for (std::size_t a = 0; a < std::size_t(D); ++a) {
+                double x = r[i][int(a)] - r[j][int(a)];
+                x = x > half[a] ? x - period[a] : (x < -half[a] ? x + period[a] : x);
+                sep[m][a] = x;
+                dist2 += x * x;
+            }
+            const bool in = dist2 < sigma_ij * sigma_ij;  // false for NaN
+            const std::uint8_t was = touching[k];
+            touching[k] = std::uint8_t(in);
+            dist_of[m] = dist2;
+            hit[m] = std::uint32_t(k - b0) | (was ? 0u : kFormed);
+            m += in ? 1 : 0;
         }
-        if (!(dist2 < sigma_ij * sigma_ij)) {
-            if (touching[k]) touching[k] = 0;
-            continue;
+        for (std::size_t q = 0; q < m; ++q) {
+            dist_of[q] = std::sqrt(dist_of[q]);
+            inv_dist[q] = 1.0 / dist_of[q];
         }
-        Vec<D> d;
-        for (std::size_t a = 0; a < std::size_t(D); ++a) d[int(a)] = dc[a];
-        const double dist = std::sqrt(dist2);
-        const Vec<D> nrm = (1.0 / dist) * d;   // from j to i
-        const double delta = sigma_ij - dist;  // (A6)
-        const bool forms = touching[k] == 0;
-        touching[k] = 1;
-        ++active;
-        if (forms) ++formed;
-        // The largest relative overlap: a maximum, the same whatever order entries come in.
-        const double relative = delta / sigma_ij;
-        worst = relative > worst ? relative : worst;
-        const double li = radius[si], lj = radius[sj];
-        AngVec<D> wpi = zero, wpj = zero, whi = zero, whj = zero;
-        if constexpr (Rot) {
-            wpi = w_pred[i];
-            wpj = w_pred[j];
-            whi = w[i];
-            whj = w[j];
-        }
-        // (A3) at the predicted velocities: the dampers' relative velocity.
-        const Vec<D> g = contact_velocity<D>(v_pred[i], v_pred[j], wpi, wpj, li, lj, nrm);
-        const ContactForce<D> c = [&] {
-            if constexpr (kHistory) {
-                Vec<D>& xi = spring[k];
-                if (forms) xi.setZero();
-                // The spring integrates the half-step velocities that moved the positions; a
-                // new contact only over its in-contact part delta / closing speed.
-                const Vec<D> gh = contact_velocity<D>(v[i], v[j], whi, whj, li, lj, nrm);
-                const double closing = -gh.dot(nrm);
-                double dt_in = dt_advance;
-                if (forms && closing * dt_in > delta) dt_in = delta / closing;
-                advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
-                return L::template force<D>(P, delta, nrm, g, li, lj, xi);
+        for (std::size_t q = 0; q < m; ++q) {
+            const std::size_t k = b0 + (hit[q] & ~kFormed);
+            const bool forms = (hit[q] & kFormed) != 0;
+            const std::uint32_t i = owner[k], j = partner[k];
+            const std::uint32_t si = species[i], sj = species[j];
+            const typename L::Pair& P = params[class_of[si] * classes + class_of[sj]];
+            const double sigma_ij = sigma[si * ns + sj];
+            Vec<D> d;
+            for (std::size_t a = 0; a < std::size_t(D); ++a) d[int(a)] = sep[q][a];
+            const double dist = dist_of[q];
+            const Vec<D> nrm = inv_dist[q] * d;    // from j to i
+            const double delta = sigma_ij - dist;  // (A6)
+            ++active;
+            if (forms) ++formed;
+            // The largest relative overlap: a maximum, the same whatever order entries come in.
+            const double relative = delta / sigma_ij;
+            worst = relative > worst ? relative : worst;
+            const double li = radius[si], lj = radius[sj];
+            AngVec<D> wpi = zero, wpj = zero, whi = zero, whj = zero;
+            if constexpr (Rot) {
+                wpi = w_pred[i];
+                wpj = w_pred[j];
+                whi = w[i];
+                whj = w[j];
+            }
+            // (A3) at the predicted velocities: the dampers' relative velocity.
+            const Vec<D> g = contact_velocity<D>(v_pred[i], v_pred[j], wpi, wpj, li, lj, nrm);
+            const ContactForce<D> c = [&] {
+                if constexpr (kHistory) {
+                    Vec<D>& xi = spring[k];
+                    if (forms) xi.setZero();
+                    // The spring integrates the half-step velocities that moved the positions; a
+                    // new contact only over its in-contact part delta / closing speed.
+                    const Vec<D> gh = contact_velocity<D>(v[i], v[j], whi, whj, li, lj, nrm);
+                    const double closing = -gh.dot(nrm);
+                    double dt_in = dt_advance;
+                    if (forms && closing * dt_in > delta) dt_in = delta / closing;
+                    advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
+                    return L::template force<D>(P, delta, nrm, g, li, lj, xi);
+                } else {
+                    (void)whi;
+                    (void)whj;
+                    (void)spring;
+                    (void)v;
+                    Vec<D> unused;
+                    return L::template force<D>(P, delta, nrm, g, li, lj, unused);
+                }
+            }();
+            if constexpr (Slots) {
+                mine.push_back(std::uint32_t(k));
+                slot_force[k] = c.force;
+                if constexpr (Rot) {
+                    slot_torque_i[k] = c.torque_i;
+                    slot_torque_j[k] = c.torque_j;
+                }
             } else {
-                (void)whi;
-                (void)whj;
-                (void)spring;
-                (void)v;
-                Vec<D> unused;
-                return L::template force<D>(P, delta, nrm, g, li, lj, unused);
-            }
-        }();
-        if constexpr (Slots) {
-            mine.push_back(std::uint32_t(k));
-            slot_force[k] = c.force;
-            if constexpr (Rot) {
-                slot_torque_i[k] = c.torque_i;
-                slot_torque_j[k] = c.torque_j;
-            }
-        } else {
-            f[i] += c.force;
-            f[j] -= c.force;
-            if constexpr (Rot) {
-                tau[i] += c.torque_i;
-                tau[j] += c.torque_j;
+                f[i] += c.force;
+                f[j] -= c.force;
+                if constexpr (Rot) {
+                    tau[i] += c.torque_i;
+                    tau[j] += c.torque_j;
+                }
             }
         }
     }

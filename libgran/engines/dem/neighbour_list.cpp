@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libgran/core/parallel.hpp"
 #include "libgran/engines/cell_grid.hpp"
 
 namespace gran {
@@ -155,9 +156,13 @@ void DemNeighbourList<D>::bin(const std::vector<Vec<D>>& r,
     }
 }
 
+// The pairs of the cells [c0, c1) (each cell with itself and its half stencil), appended to
+// `out` in cell order: the pairs of consecutive cell ranges, concatenated, are the pairs of the
+// whole grid in the order one range would find them.
 template <int D>
 template <bool MinImage>
-void DemNeighbourList<D>::find_pairs(const Box<D>& box) {
+void DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
+                                     std::vector<std::uint64_t>& out) const {
     std::array<bool, D> single{};  // periodic axes of one cell: minimum image per pair
     for (std::size_t a = 0; a < std::size_t(D); ++a) single[a] = periodic_[a] && ncell_[a] == 1;
     const auto wrap = [&](Vec<D>& d) {
@@ -173,7 +178,6 @@ void DemNeighbourList<D>::find_pairs(const Box<D>& box) {
             }
         }
     };
-    (void)box;
     const std::uint32_t* cs = cell_start_.data();
     const Vec<D>* xs = xs_.data();
     const std::uint32_t* ss = ss_.data();
@@ -182,13 +186,16 @@ void DemNeighbourList<D>::find_pairs(const Box<D>& box) {
     const std::size_t ns = ns_;
     const auto push = [&](std::uint32_t a, std::uint32_t b) {
         const std::uint64_t i = order[a], j = order[b];
-        pairs_.push_back(i < j ? (i << 32 | j) : (j << 32 | i));
+        out.push_back(i < j ? (i << 32 | j) : (j << 32 | i));
     };
-    pairs_.clear();
-    const std::size_t cells = cell_start_.size() - 1;
     std::array<std::int32_t, D> q{};  // coordinates of cell c
-    for (std::size_t c = 0; c < cells; ++c) {
-        if (c != 0) {
+    std::size_t rest = c0;
+    for (std::size_t a = 0; a < std::size_t(D); ++a) {
+        q[a] = std::int32_t(rest % std::size_t(ncell_[a]));
+        rest /= std::size_t(ncell_[a]);
+    }
+    for (std::size_t c = c0; c < c1; ++c) {
+        if (c != c0) {
             for (std::size_t a = 0; a < std::size_t(D); ++a) {
                 if (++q[a] < ncell_[a]) break;
                 q[a] = 0;
@@ -236,8 +243,8 @@ void DemNeighbourList<D>::find_pairs(const Box<D>& box) {
 }
 
 template <int D>
-void DemNeighbourList<D>::build(const Box<D>& box, const std::vector<Vec<D>>& r,
-                                const std::vector<std::uint32_t>& species) {
+void DemNeighbourList<D>::build(const std::vector<Vec<D>>& r,
+                                const std::vector<std::uint32_t>& species, int threads) {
     const std::size_t n = r.size();
     // The pairs in contact (and their springs), to carry over.
     carried_.clear();
@@ -253,24 +260,10 @@ void DemNeighbourList<D>::build(const Box<D>& box, const std::vector<Vec<D>>& r,
 
     grid(r);
     bin(r, species);
-    if (min_image_) {
-        find_pairs<true>(box);
+    if (threads > 1) {
+        find_rows_threaded(n, threads);
     } else {
-        find_pairs<false>(box);
-    }
-
-    // Compressed rows by the lower index: counts, inclusive prefix sums, filled from the back.
-    start.assign(n + 1, 0u);
-    for (std::uint64_t p : pairs_) ++start[std::size_t(p >> 32)];
-    for (std::size_t i = 1; i < n; ++i) start[i] += start[i - 1];
-    start[n] = std::uint32_t(pairs_.size());
-    partner.resize(pairs_.size());
-    for (std::uint64_t p : pairs_) {
-        partner[--start[std::size_t(p >> 32)]] = std::uint32_t(p);
-    }
-    owner.resize(partner.size());
-    for (std::size_t i = 0; i < n; ++i) {
-        std::fill(owner.begin() + start[i], owner.begin() + start[i + 1], std::uint32_t(i));
+        find_rows(n);
     }
     touching.assign(partner.size(), 0);
     if (history_) spring.assign(partner.size(), Vec<D>::Zero());
@@ -283,6 +276,96 @@ void DemNeighbourList<D>::build(const Box<D>& box, const std::vector<Vec<D>>& r,
         }
     }
     if (by_partner_on_) index_by_partner();
+}
+
+// The pairs of the whole grid, then compressed rows by the lower index: counts, inclusive prefix
+// sums, filled from the back (so a row holds its pairs in the reverse of the order found).
+template <int D>
+void DemNeighbourList<D>::find_rows(std::size_t n) {
+    const std::size_t cells = cell_start_.size() - 1;
+    pairs_.clear();
+    if (min_image_) {
+        find_pairs<true>(0, cells, pairs_);
+    } else {
+        find_pairs<false>(0, cells, pairs_);
+    }
+    start.assign(n + 1, 0u);
+    for (std::uint64_t p : pairs_) ++start[std::size_t(p >> 32)];
+    for (std::size_t i = 1; i < n; ++i) start[i] += start[i - 1];
+    start[n] = std::uint32_t(pairs_.size());
+    partner.resize(pairs_.size());
+    for (std::uint64_t p : pairs_) {
+        partner[--start[std::size_t(p >> 32)]] = std::uint32_t(p);
+    }
+    owner.resize(partner.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        std::fill(owner.begin() + start[i], owner.begin() + start[i + 1], std::uint32_t(i));
+    }
+}
+
+// find_rows on several threads, entry for entry the same rows. Thread t searches the cells whose
+// particles (slots in cell order) fall in its share of the slots, into its own segment; the
+// segments in thread order are the single search's sequence of pairs. Row i then takes the pairs
+// of segment t at the places the serial fill gives them: below those of the earlier segments.
+template <int D>
+void DemNeighbourList<D>::find_rows_threaded(std::size_t n, int threads) {
+    const std::size_t cells = cell_start_.size() - 1;
+    const std::size_t parts = std::size_t(threads);
+    segments_.resize(parts);
+    row_count_.resize(parts);
+    ran_.assign(parts, 0);
+    const std::uint32_t* cs = cell_start_.data();
+    parallel_chunks(threads, n, [&](std::size_t part, std::size_t s0, std::size_t s1) {
+        // The cells whose first slot lies in [s0, s1) (an empty cell finds nothing anywhere).
+        const std::size_t c0 = std::size_t(std::lower_bound(cs, cs + cells, s0) - cs);
+        const std::size_t c1 =
+            s1 == n ? cells : std::size_t(std::lower_bound(cs, cs + cells, s1) - cs);
+        std::vector<std::uint64_t>& seg = segments_[part];
+        seg.clear();
+        ran_[part] = 1;
+        if (min_image_) {
+            find_pairs<true>(c0, c1, seg);
+        } else {
+            find_pairs<false>(c0, c1, seg);
+        }
+        std::vector<std::uint32_t>& count = row_count_[part];
+        count.assign(n, 0u);
+        for (std::uint64_t p : seg) ++count[std::size_t(p >> 32)];
+    });
+    for (std::size_t t = 0; t < parts; ++t) {  // parts the runtime gave no thread
+        if (ran_[t]) continue;
+        segments_[t].clear();
+        row_count_[t].assign(n, 0u);
+    }
+    // Row ends (exclusive prefix sums of the total counts give the starts).
+    start.resize(n + 1);
+    std::uint32_t total = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        start[i] = total;
+        for (std::size_t t = 0; t < parts; ++t) total += row_count_[t][i];
+    }
+    start[n] = total;
+    partner.resize(total);
+    owner.resize(total);
+    parallel_chunks(threads, n, [&](std::size_t, std::size_t i0, std::size_t i1) {
+        // Segment t fills row i downwards from its end less the earlier segments' pairs.
+        for (std::size_t i = i0; i < i1; ++i) {
+            std::uint32_t top = start[i + 1];
+            for (std::size_t t = 0; t < parts; ++t) {
+                const std::uint32_t c = row_count_[t][i];
+                row_count_[t][i] = top;
+                top -= c;
+            }
+            std::fill(owner.begin() + start[i], owner.begin() + start[i + 1], std::uint32_t(i));
+        }
+    });
+    parallel_chunks(threads, parts, [&](std::size_t, std::size_t t0, std::size_t t1) {
+        for (std::size_t t = t0; t < t1; ++t) {
+            std::uint32_t* cursor = row_count_[t].data();
+            for (std::uint64_t p : segments_[t])
+                partner[--cursor[std::size_t(p >> 32)]] = std::uint32_t(p);
+        }
+    });
 }
 
 // Counting sort of the entries by partner; filled in increasing k, so each partner's entries

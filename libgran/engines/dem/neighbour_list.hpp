@@ -35,8 +35,9 @@ class DemNeighbourList {
     // cutoff: ns x ns pair cutoffs sigma_ij + skin. history: keep tangential springs per entry.
     void configure(const Box<D>& box, std::vector<double> cutoff, std::size_t ns,
                    std::size_t n_particles, bool history);
-    void build(const Box<D>& box, const std::vector<Vec<D>>& r,
-               const std::vector<std::uint32_t>& species);
+    // On `threads` threads: the same entries in the same order for any count.
+    void build(const std::vector<Vec<D>>& r, const std::vector<std::uint32_t>& species,
+               int threads = 1);
 
     std::size_t entries() const { return partner.size(); }
     std::size_t cells() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
@@ -85,7 +86,9 @@ class DemNeighbourList {
     void grid(const std::vector<Vec<D>>& r);
     void bin(const std::vector<Vec<D>>& r, const std::vector<std::uint32_t>& species);
     template <bool MinImage>
-    void find_pairs(const Box<D>& box);
+    void find_pairs(std::size_t c0, std::size_t c1, std::vector<std::uint64_t>& out) const;
+    void find_rows(std::size_t n);
+    void find_rows_threaded(std::size_t n, int threads);
 
     void index_by_partner();
 
@@ -114,6 +117,9 @@ class DemNeighbourList {
     std::vector<std::uint32_t> ss_;          // species by slot
     std::vector<std::uint64_t> pairs_;       // (i << 32 | j), i < j, in cell order
     std::vector<Carried> carried_;
+    std::vector<std::vector<std::uint64_t>> segments_;   // per thread: its pairs, in cell order
+    std::vector<std::vector<std::uint32_t>> row_count_;  // per thread: its pairs per row
+    std::vector<std::uint8_t> ran_;                      // per thread: its part ran
     std::vector<std::uint32_t> fill_;  // index_by_partner(): next free slot per partner
 };
 

@@ -119,6 +119,14 @@ void expect_same_state(const DemEngine<D>& a, const DemEngine<D>& b, const std::
     EXPECT_TRUE(same_bits(a.torques(), b.torques())) << what << ": torques";
     EXPECT_TRUE(same_bits(a.neighbour_list().spring, b.neighbour_list().spring))
         << what << ": tangential springs";
+    // The list built on several threads: the same entries in the same order.
+    EXPECT_TRUE(same_bits(a.neighbour_list().start, b.neighbour_list().start)) << what << ": rows";
+    EXPECT_TRUE(same_bits(a.neighbour_list().partner, b.neighbour_list().partner))
+        << what << ": list entries";
+    EXPECT_TRUE(same_bits(a.neighbour_list().owner, b.neighbour_list().owner))
+        << what << ": entry owners";
+    EXPECT_TRUE(same_bits(a.neighbour_list().touching, b.neighbour_list().touching))
+        << what << ": contact flags";
     EXPECT_EQ(a.counters().contacts, b.counters().contacts) << what;
     EXPECT_EQ(a.counters().active_contacts, b.counters().active_contacts) << what;
     EXPECT_EQ(a.counters().rebuilds, b.counters().rebuilds) << what;
