@@ -260,11 +260,7 @@ void DemNeighbourList<D>::build(const std::vector<Vec<D>>& r,
 
     grid(r);
     bin(r, species);
-    if (threads > 1) {
-        find_rows_threaded(n, threads);
-    } else {
-        find_rows(n);
-    }
+    find_rows(n, std::max(threads, 1));
     touching.assign(partner.size(), 0);
     if (history_) spring.assign(partner.size(), Vec<D>::Zero());
     for (const Carried& c : carried_) {
@@ -278,42 +274,19 @@ void DemNeighbourList<D>::build(const std::vector<Vec<D>>& r,
     if (by_partner_on_) index_by_partner();
 }
 
-// The pairs of the whole grid, then compressed rows by the lower index: counts, inclusive prefix
-// sums, filled from the back (so a row holds its pairs in the reverse of the order found).
+// The pairs, then compressed rows by the lower index, on `threads` threads (one: the serial code),
+// entry for entry the same rows for any count. Thread t searches the cells whose particles (slots
+// in cell order) fall in its share of the slots, into its own segment; the segments in thread
+// order are the one-thread sequence of pairs. Each row is filled from its end downwards in that
+// sequence (so it holds its pairs in the reverse of the order found): segment t's pairs of row i
+// go below those of the earlier segments.
 template <int D>
-void DemNeighbourList<D>::find_rows(std::size_t n) {
-    const std::size_t cells = cell_start_.size() - 1;
-    pairs_.clear();
-    if (min_image_) {
-        find_pairs<true>(0, cells, pairs_);
-    } else {
-        find_pairs<false>(0, cells, pairs_);
-    }
-    start.assign(n + 1, 0u);
-    for (std::uint64_t p : pairs_) ++start[std::size_t(p >> 32)];
-    for (std::size_t i = 1; i < n; ++i) start[i] += start[i - 1];
-    start[n] = std::uint32_t(pairs_.size());
-    partner.resize(pairs_.size());
-    for (std::uint64_t p : pairs_) {
-        partner[--start[std::size_t(p >> 32)]] = std::uint32_t(p);
-    }
-    owner.resize(partner.size());
-    for (std::size_t i = 0; i < n; ++i) {
-        std::fill(owner.begin() + start[i], owner.begin() + start[i + 1], std::uint32_t(i));
-    }
-}
-
-// find_rows on several threads, entry for entry the same rows. Thread t searches the cells whose
-// particles (slots in cell order) fall in its share of the slots, into its own segment; the
-// segments in thread order are the single search's sequence of pairs. Row i then takes the pairs
-// of segment t at the places the serial fill gives them: below those of the earlier segments.
-template <int D>
-void DemNeighbourList<D>::find_rows_threaded(std::size_t n, int threads) {
+void DemNeighbourList<D>::find_rows(std::size_t n, int threads) {
     const std::size_t cells = cell_start_.size() - 1;
     const std::size_t parts = std::size_t(threads);
     segments_.resize(parts);
     row_count_.resize(parts);
-    ran_.assign(parts, 0);
+    for (std::vector<std::uint64_t>& seg : segments_) seg.clear();
     const std::uint32_t* cs = cell_start_.data();
     parallel_chunks(threads, n, [&](std::size_t part, std::size_t s0, std::size_t s1) {
         // The cells whose first slot lies in [s0, s1) (an empty cell finds nothing anywhere).
@@ -321,8 +294,6 @@ void DemNeighbourList<D>::find_rows_threaded(std::size_t n, int threads) {
         const std::size_t c1 =
             s1 == n ? cells : std::size_t(std::lower_bound(cs, cs + cells, s1) - cs);
         std::vector<std::uint64_t>& seg = segments_[part];
-        seg.clear();
-        ran_[part] = 1;
         if (min_image_) {
             find_pairs<true>(c0, c1, seg);
         } else {
@@ -332,12 +303,10 @@ void DemNeighbourList<D>::find_rows_threaded(std::size_t n, int threads) {
         count.assign(n, 0u);
         for (std::uint64_t p : seg) ++count[std::size_t(p >> 32)];
     });
-    for (std::size_t t = 0; t < parts; ++t) {  // parts the runtime gave no thread
-        if (ran_[t]) continue;
-        segments_[t].clear();
-        row_count_[t].assign(n, 0u);
+    for (std::size_t t = 0; t < parts; ++t) {  // also the parts the runtime gave no thread
+        if (segments_[t].empty()) row_count_[t].assign(n, 0u);
     }
-    // Row ends (exclusive prefix sums of the total counts give the starts).
+    // Row starts: exclusive prefix sums of the total counts.
     start.resize(n + 1);
     std::uint32_t total = 0;
     for (std::size_t i = 0; i < n; ++i) {

@@ -90,8 +90,7 @@ class DemNeighbourList {
     void bin(const std::vector<Vec<D>>& r, const std::vector<std::uint32_t>& species);
     template <bool MinImage>
     void find_pairs(std::size_t c0, std::size_t c1, std::vector<std::uint64_t>& out) const;
-    void find_rows(std::size_t n);
-    void find_rows_threaded(std::size_t n, int threads);
+    void find_rows(std::size_t n, int threads);
 
     void index_by_partner();
 
@@ -118,11 +117,10 @@ class DemNeighbourList {
     std::vector<std::uint32_t> order_;       // slot (cell order) -> particle
     std::vector<Vec<D>> xs_;                 // positions by slot
     std::vector<std::uint32_t> ss_;          // species by slot
-    std::vector<std::uint64_t> pairs_;       // (i << 32 | j), i < j, in cell order
     std::vector<Carried> carried_;
-    std::vector<std::vector<std::uint64_t>> segments_;   // per thread: its pairs, in cell order
-    std::vector<std::vector<std::uint32_t>> row_count_;  // per thread: its pairs per row
-    std::vector<std::uint8_t> ran_;                      // per thread: its part ran
+    // Per thread: its pairs i << 32 | j (i < j) in cell order, and its pairs per row.
+    std::vector<std::vector<std::uint64_t>> segments_;
+    std::vector<std::vector<std::uint32_t>> row_count_;
     std::vector<std::uint32_t> fill_;  // index_by_partner(): next free slot per partner
 };
 
