@@ -184,15 +184,13 @@ template <int D>
     const double g_n = g.dot(n);
     const double f_n = p.k_n * delta - p.gamma_n * g_n;  // (A5)
     const Vec<D> g_t = g - g_n * n;
-    const double speed_t = g_t.norm();
-    Vec<D> f_t = Vec<D>::Zero();
-    bool slipping = false;
-    if (speed_t > 0) {
-        const double viscous = p.gamma_t * speed_t;  // (A7)
-        const double cap = p.mu * std::fabs(f_n);    // (A8)
-        slipping = viscous > cap;
-        f_t = (-std::min(viscous, cap) / speed_t) * g_t;
-    }
+    // (A7) unless it exceeds the cap (A8). Compared squared, so a sticking contact (the
+    // common case in a bed at rest) needs neither the slip speed's square root nor a division.
+    const double cap = p.mu * std::fabs(f_n);
+    const double speed2 = g_t.squaredNorm();
+    const bool slipping = (p.gamma_t * p.gamma_t) * speed2 > cap * cap;
+    Vec<D> f_t = -p.gamma_t * g_t;                         // (A7)
+    if (slipping) f_t = (-cap / std::sqrt(speed2)) * g_t;  // (A8): |F_t| = mu |F_n| along -g_t
     return contact_detail::assemble<D>(f_n, f_t, n, l_i, l_j, slipping);
 }
 

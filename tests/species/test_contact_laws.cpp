@@ -156,6 +156,47 @@ TEST(ContactLawsKernels, SpheresConserveAngularMomentumAndDissipateThroughContac
     check_kernel_identities<3>();
 }
 
+// The linear dashpot's tangential force (Eqs. A7, A8): -gamma_t g_t while gamma_t |g_t| <= mu |F_n|
+// (the comparison is made squared, without the slip speed's square root); at the cap exactly
+// mu |F_n| along -g_t. Both sides of the cap, 1% away, and a contact that does not slide.
+template <int D>
+void check_linear_dashpot_cap() {
+    const Vec<D> n = unit<D>(D - 1);
+    const Vec<D> g_t = 0.3 * unit<D>(0);
+    const Vec<D> g = g_t - 0.2 * n;
+    const double delta = 0.01, l = 0.5;
+    const LinearDashpotContact base{1000, 5, 4, 0};
+    const double f_n = 1000 * delta + 5 * 0.2;
+    const double mu_edge = 4 * 0.3 / f_n;  // gamma_t |g_t| = mu |F_n|
+    for (const double factor : {0.99, 1.01}) {
+        LinearDashpotContact p = base;
+        p.mu = factor * mu_edge;
+        const ContactForce<D> c = linear_dashpot_force<D>(p, delta, n, g, l, l);
+        const Vec<D> f_t = c.force - c.f_n * n;
+        EXPECT_NEAR(c.f_n, f_n, 1e-12);
+        if (factor < 1) {  // slides: capped
+            EXPECT_TRUE(c.slipping);
+            EXPECT_NEAR(f_t.norm(), p.mu * f_n, 1e-12);
+        } else {
+            EXPECT_FALSE(c.slipping);
+            EXPECT_NEAR(f_t.norm(), 4 * 0.3, 1e-12);
+        }
+        EXPECT_NEAR(f_t.normalized().dot(g_t.normalized()), -1.0, 1e-14);
+    }
+    LinearDashpotContact p = base;
+    p.mu = 0.5;
+    const ContactForce<D> still = linear_dashpot_force<D>(p, delta, n, Vec<D>(-0.2 * n), l, l);
+    EXPECT_FALSE(still.slipping);
+    EXPECT_EQ((still.force - still.f_n * n).norm(), 0.0);
+}
+
+TEST(ContactLawsLinear, DisksTangentialDashpotIsCappedAtMuFnAndOnlyThere) {
+    check_linear_dashpot_cap<2>();
+}
+TEST(ContactLawsLinear, SpheresTangentialDashpotIsCappedAtMuFnAndOnlyThere) {
+    check_linear_dashpot_cap<3>();
+}
+
 TEST(ContactLawsKernels, TangentialSpringIsProjectedKeepingItsLength) {
     Vec<3> xi(0.3, -0.2, 0.5);
     const Vec<3> n = Vec<3>(1, 2, 2) / 3.0;

@@ -69,10 +69,11 @@ inline ContactForce<D> spring_dashpot_coulomb(double f_n, double k_t, double gam
                                               double l_i, double l_j) {
     Vec<D> f_t = -k_t * xi - gamma_t * g_t;
     const double cap = mu * std::fabs(f_n);
-    const double norm = f_t.norm();
-    const bool slipping = norm > cap;
+    // Compared squared: a sticking contact needs no square root.
+    const double norm2 = f_t.squaredNorm();
+    const bool slipping = norm2 > cap * cap;
     if (slipping) {
-        f_t *= cap / norm;
+        f_t *= cap / std::sqrt(norm2);
         if (k_t > 0) {
             xi = -(f_t + gamma_t * g_t) / k_t;
         } else {
