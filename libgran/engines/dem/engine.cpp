@@ -201,7 +201,36 @@ template <int D>
 void DemEngine<D>::rebuild() {
     list_.build(p_.r, p_.species, threads_);
     std::fill(disp_.begin(), disp_.end(), Vec<D>::Zero());
+    wall_candidates_stale_ = true;
     ++counters_.rebuilds;
+}
+
+// A particle touches a wall only within R of its surface, which stays within `reach` of the
+// wall's base. Until the next list build a particle moves less than skin / 2 from where it was
+// at the last one, so less than skin from where it is now: the particles within reach + R + skin
+// of the base are all that can touch the wall meanwhile (1e-9 L more for the rounding of the
+// wall's position). Those still flagged as touching are kept, so the wall pass clears their
+// flags. In increasing index, so the wall pass adds the forces in the order a pass over all
+// particles does.
+template <int D>
+void DemEngine<D>::find_wall_candidates() {
+    const std::size_t n = p_.size();
+    for (std::size_t c = 0; c < 2 * D; ++c) {
+        std::vector<std::uint32_t>& near = wall_candidates_[c];
+        near.clear();
+        const Wall& w = walls_[c];
+        if (!w.present) continue;
+        const int a = int(c / 2);
+        const double margin = skin_ + 1e-9 * box_.length[a] + w.motion.reach();
+        const double lowest = w.base - margin, highest = w.base + margin;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double R = radius_[p_.species[i]];
+            const double x = p_.r[i][a];
+            const bool reaches = c % 2 == 0 ? x - R < highest : x + R > lowest;
+            if (reaches || wall_touching_[i * 2 * D + c]) near.push_back(std::uint32_t(i));
+        }
+    }
+    wall_candidates_stale_ = false;
 }
 
 template <int D>
@@ -456,6 +485,7 @@ void DemEngine<D>::set_wall_slide(int wall_axis, int side, int axis, const WallM
     Wall& w = walls_[code(wall_axis, side)];
     w.slide_axis = axis;
     w.slide = motion;
+    wall_candidates_stale_ = true;
     reevaluate_forces();
 }
 
@@ -489,6 +519,7 @@ void DemEngine<D>::set_wall(int axis, int side, const WallMotion& motion, std::s
     w.motion = motion;
     w.partner = partner;
     w.base = side == 0 ? reach : box_.length[axis] - reach;  // excursion inside [0, L]
+    wall_candidates_stale_ = true;
     reevaluate_forces();
 }
 
@@ -498,6 +529,7 @@ void DemEngine<D>::remove_wall(int axis, int side) {
     walls_[code(axis, side)].present = false;
     walls_[code(axis, side)].slide_axis = -1;
     for (std::size_t i = 0; i < p_.size(); ++i) wall_touching_[i * 2 * D + code(axis, side)] = 0;
+    wall_candidates_stale_ = true;
     reevaluate_forces();
 }
 
@@ -518,6 +550,7 @@ void DemEngine<D>::checkpoint(StateArchive& ar) {
     ar.io(list_);
     ar.io(wall_impulse_);
     ar.io(wall_hits_);
+    wall_candidates_stale_ = true;  // derived from the state: found again after a restore
 }
 
 template class DemEngine<2>;

@@ -58,12 +58,12 @@ struct DemSettings {
 
 struct DemCounters {
     std::uint64_t steps = 0;
-    std::uint64_t contacts = 0;         // particle-particle contacts formed
-    std::uint64_t wall_contacts = 0;    // particle-wall contacts formed
-    std::uint64_t active_contacts = 0;  // particle-particle contacts at the last step
+    std::uint64_t contacts = 0;              // particle-particle contacts formed
+    std::uint64_t wall_contacts = 0;         // particle-wall contacts formed
+    std::uint64_t active_contacts = 0;       // particle-particle contacts at the last step
     std::uint64_t active_contact_steps = 0;  // their sum over the steps (a mean contact number)
-    std::uint64_t rebuilds = 0;         // neighbour-list builds
-    double max_overlap = 0;             // largest delta / sigma_ij seen (a wall: delta / sigma_i)
+    std::uint64_t rebuilds = 0;              // neighbour-list builds
+    double max_overlap = 0;  // largest delta / sigma_ij seen (a wall: delta / sigma_i)
 };
 
 struct DemEnergies {
@@ -194,6 +194,7 @@ class DemEngine {
     void allocate_state();
     void place_walls();
     void rebuild();
+    void find_wall_candidates();
     // Forces at the present state with the dampers at the current velocities (construction,
     // wall changes); springs and wall impulses do not advance.
     void reevaluate_forces();
@@ -262,6 +263,11 @@ class DemEngine {
     std::vector<AngVec<D>> tau_, w_pred_;
     std::vector<std::uint8_t> wall_touching_;  // n x 2D
     std::vector<Vec<D>> wall_spring_;          // n x 2D, history laws only
+    // Per wall, the particles that can touch it before the next list build, in increasing index
+    // (find_wall_candidates): the wall pass visits only these. Stale after a build, a wall
+    // change or a restore, and found again by the next wall pass.
+    std::array<std::vector<std::uint32_t>, 2 * D> wall_candidates_;
+    bool wall_candidates_stale_ = true;
 
     DemNeighbourList<D> list_;
     // Threaded steps (threads_ > 1): per-entry contact forces and torques, per-thread tallies.

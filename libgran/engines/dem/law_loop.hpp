@@ -241,6 +241,7 @@ void DemEngine<D>::wall_forces(double dt_advance) {
     double worst = counters_.max_overlap;
     std::array<double, 2 * D> impulse{};
     std::array<std::uint64_t, 2 * D> formed{};
+    if (wall_candidates_stale_) find_wall_candidates();
     if (threads_ <= 1) {
         wall_range<L, Rot>(dt_advance, 0, n, impulse, formed, worst, nullptr);
     } else {
@@ -276,7 +277,8 @@ void DemEngine<D>::wall_forces(double dt_advance) {
     counters_.max_overlap = worst;
 }
 
-// The wall contacts of particles [i0, i1): forces and torques added to f_, tau_; normal forces
+// The wall contacts of particles [i0, i1) (those of them that can reach the wall,
+// wall_candidates_): forces and torques added to f_, tau_; normal forces
 // summed into `impulse` (touched null) or appended to `touched`; contacts formed and the largest
 // relative overlap into `formed` and `worst`.
 template <int D>
@@ -313,7 +315,11 @@ void DemEngine<D>::wall_range(double dt_advance, std::size_t i0, std::size_t i1,
         const double* radius = radius_.data();
         const Vec<D>* r = p_.r.data();
         std::uint8_t* touching_of = wall_touching_.data() + c;
-        for (std::size_t i = i0; i < i1; ++i) {
+        const std::vector<std::uint32_t>& near = wall_candidates_[c];
+        const auto first = std::lower_bound(near.begin(), near.end(), std::uint32_t(i0));
+        const auto last = std::lower_bound(first, near.end(), std::uint32_t(i1));
+        for (auto it = first; it != last; ++it) {
+            const std::size_t i = *it;
             const std::uint32_t s = species[i];
             const double R = radius[s];
             const double gap = inward * (r[i][a] - surface) - R;
