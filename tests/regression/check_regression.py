@@ -126,13 +126,19 @@ def additions():
     return out
 
 
-def compare(result, reference, scene="", allowed=()):
-    problems = []
+def aligned(result, reference, problems):
+    """The items of a result and of its reference file, the result's in the reference's layout."""
     with h5py.File(result, "r") as fr, h5py.File(reference, "r") as fref:
         got, want = items(fr), items(fref)
     if "particles/all/box/edges" in want or any(re.fullmatch(r"observables/[^/]+/time", k)
                                                 for k in want):  # made before issue 14
         got = in_reference_layout(got, problems)
+    return got, want
+
+
+def compare(result, reference, scene="", allowed=()):
+    problems = []
+    got, want = aligned(result, reference, problems)
     for key in sorted(set(want) - set(got)):
         problems.append(f"missing {key}")
     added = 0
@@ -154,15 +160,9 @@ def update_reference(result, reference, scene="", allowed=()):
     other = [p for p in problems if not p.startswith("differs ")]
     if other:
         return other
-    with h5py.File(result, "r") as fr:
-        got = items(fr)
-    with h5py.File(reference, "r") as fref:
-        if "particles/all/box/edges" in items(fref) or any(
-                re.fullmatch(r"observables/[^/]+/time", k) for k in items(fref)):
-            got = in_reference_layout(got, [])
-    keys = [p[len("differs "):].split(":", 1)[0] for p in problems]
+    got, want = aligned(result, reference, [])
     with h5py.File(reference, "r+") as fref:
-        for key in keys:
+        for key in sorted(k for k in set(got) & set(want) if not same(got[k], want[k])):
             if "@" in key:
                 path, attr = key.split("@", 1)
                 fref[path].attrs[attr] = got[key]
