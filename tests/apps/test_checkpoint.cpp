@@ -62,6 +62,12 @@ class Checkpoint : public gran::testing::TempDirTest {
         return f.root().read_int64s("performance/" + name).at(0);
     }
 
+    // Waits until the run has written its first checkpoint (at most 60 s), or has ended.
+    static void wait_for_first_checkpoint(GranProcess& p, const std::string& out) {
+        for (int poll = 0; poll < 6000 && !fs::exists(gran::checkpoint_path_for(out)); ++poll)
+            if (p.wait_up_to(0.01)) return;  // ended: nothing left to kill
+    }
+
     // Starts the run (or resumes it once a checkpoint exists), kills it with SIGKILL after a
     // seeded random delay, `kills` times, then lets the last resume finish. Returns the kills
     // that hit a running process. The delays scale with the reference run's wall-clock time, so
@@ -81,6 +87,11 @@ class Checkpoint : public gran::testing::TempDirTest {
                 resume ? std::vector<std::string>{"run", "--resume", out, "-q"}
                        : std::vector<std::string>{"run", kScenes + scene, "-o", out, "-q"};
             GranProcess p(args, log);
+            // Under load (ctest -j2 beside a heavy test) start-up can outlast every drawn delay;
+            // then all kills land before the first checkpoint and the loop never resumes. So once
+            // half the kills have passed without a checkpoint, a fresh session first waits for its
+            // first checkpoint (or its end), then draws its delay.
+            if (!resume && killed >= kills / 2 && killed < kills) wait_for_first_checkpoint(p, out);
             if (killed < kills && !p.wait_up_to(delay(rng))) {
                 p.send(SIGKILL);
                 EXPECT_TRUE(p.wait_up_to(60));
