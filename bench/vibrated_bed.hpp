@@ -42,7 +42,8 @@ inline ContactTable bed_contacts(const SpeciesTable& table) {
 
 // The engine for the bed: keep `table` and `contacts` alive as long as it.
 inline DemEngine<3> vibrated_bed(const SpeciesTable& table, const ContactTable& contacts,
-                                 std::size_t n, double W, int threads = 1) {
+                                 std::size_t n, double W, int threads = 1,
+                                 std::int64_t sort_interval = -1) {
     const double width = bed_width(n);
     Box<3> box;
     box.length = Vec<3>(width, width, 80);
@@ -50,6 +51,10 @@ inline DemEngine<3> vibrated_bed(const SpeciesTable& table, const ContactTable& 
     DemSettings settings;
     settings.gravity = {0, 0, -1};
     settings.threads = threads;
+    if (sort_interval >= 0) {  // -1: the engine's defaults
+        settings.sort_interval = std::uint64_t(sort_interval);
+        settings.min_particles_to_sort = 0;
+    }
     DemEngine<3> e(box, table, contacts, vibrated_bed_lattice(n, width, 3.0, 1), settings);
     e.remove_wall(2, 1);
     if (W > 0) e.set_wall(2, 0, WallMotion::sinusoid(1.0, std::sqrt(W)), 0);

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "libgran/core/parallel.hpp"
 
@@ -165,6 +166,8 @@ void DemEngine<D>::allocate_state() {
     t_start_ = 0;
     for (double t : p_.t) t_start_ = std::max(t_start_, t);
     p_.t.assign(n, t_start_);
+    id_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) id_[i] = std::uint32_t(i);
     f_.assign(n, Vec<D>::Zero());
     v_pred_.assign(n, Vec<D>::Zero());
     disp_.assign(n, Vec<D>::Zero());
@@ -199,10 +202,53 @@ void DemEngine<D>::place_walls() {
 
 template <int D>
 void DemEngine<D>::rebuild() {
-    list_.build(p_.r, p_.species, threads_);
+    const bool sort = sort_due();
+    if (sort) sort_particles();
+    list_.build(p_.r, p_.species, threads_, sort ? new_index_.data() : nullptr);
     std::fill(disp_.begin(), disp_.end(), Vec<D>::Zero());
     wall_candidates_stale_ = true;
     ++counters_.rebuilds;
+}
+
+template <int D>
+bool DemEngine<D>::sort_due() const {
+    if (settings_.sort_interval == 0 || p_.size() < settings_.min_particles_to_sort) return false;
+    return counters_.sorts == 0 || steps_ - steps_at_sort_ >= settings_.sort_interval;
+}
+
+template <int D>
+void DemEngine<D>::sort_particles() {
+    const std::vector<std::uint32_t>& order = list_.spatial_order(p_.r, p_.species);
+    const std::size_t n = p_.size();
+    new_index_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) new_index_[order[k]] = std::uint32_t(k);
+    // Every per-particle array, `per` values per particle: the value of slot k is the one of
+    // particle order[k]. (The forces were consumed by the drift, or are about to be evaluated,
+    // but they move along all the same.)
+    const auto gather = [&order, n](auto& a, std::size_t per) {
+        if (a.empty()) return;
+        std::remove_reference_t<decltype(a)> out(a.size());
+        for (std::size_t k = 0; k < n; ++k) {
+            for (std::size_t c = 0; c < per; ++c) out[k * per + c] = a[order[k] * per + c];
+        }
+        a.swap(out);
+    };
+    gather(p_.r, 1);
+    gather(p_.v, 1);
+    gather(p_.t, 1);
+    gather(p_.species, 1);
+    gather(p_.w, 1);
+    gather(p_.image, 1);
+    gather(id_, 1);
+    gather(f_, 1);
+    gather(v_pred_, 1);
+    gather(disp_, 1);
+    gather(tau_, 1);
+    gather(w_pred_, 1);
+    gather(wall_touching_, 2 * D);
+    gather(wall_spring_, 2 * D);
+    steps_at_sort_ = steps_;
+    ++counters_.sorts;
 }
 
 // A particle touches a wall only within R of its surface, which stays within `reach` of the
@@ -540,6 +586,8 @@ void DemEngine<D>::checkpoint(StateArchive& ar) {
     ar.io(counters_);
     ar.io(t_start_);
     ar.io(steps_);
+    ar.io(id_);
+    ar.io(steps_at_sort_);
     ar.io(f_);
     ar.io(v_pred_);
     ar.io(disp_);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "libgran/core/parallel.hpp"
 #include "libgran/engines/cell_grid.hpp"
@@ -244,7 +245,8 @@ void DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
 
 template <int D>
 void DemNeighbourList<D>::build(const std::vector<Vec<D>>& r,
-                                const std::vector<std::uint32_t>& species, int threads) {
+                                const std::vector<std::uint32_t>& species, int threads,
+                                const std::uint32_t* new_index) {
     const std::size_t n = r.size();
     // The pairs in contact (and their springs), to carry over.
     carried_.clear();
@@ -252,8 +254,20 @@ void DemNeighbourList<D>::build(const std::vector<Vec<D>>& r,
         for (std::size_t i = 0; i < n; ++i) {
             for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
                 if (!touching[k]) continue;
-                carried_.push_back(
-                    {std::uint32_t(i), partner[k], history_ ? spring[k] : Vec<D>(Vec<D>::Zero())});
+                Carried c{std::uint32_t(i), partner[k],
+                          history_ ? spring[k] : Vec<D>(Vec<D>::Zero())};
+                if (new_index) {
+                    c.i = new_index[c.i];
+                    c.j = new_index[c.j];
+                    // The row is the lower index. The spring is the sliding of i relative to j:
+                    // seen from the other side it changes sign (as the normal and the contact
+                    // velocity do).
+                    if (c.i > c.j) {
+                        std::swap(c.i, c.j);
+                        c.spring = -c.spring;
+                    }
+                }
+                carried_.push_back(c);
             }
         }
     }

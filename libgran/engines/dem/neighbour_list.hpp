@@ -38,9 +38,20 @@ class DemNeighbourList {
     // cutoff: ns x ns pair cutoffs sigma_ij + skin. history: keep tangential springs per entry.
     void configure(const Box<D>& box, std::vector<double> cutoff, std::size_t ns,
                    std::size_t n_particles, bool history);
-    // On `threads` threads: the same entries in the same order for any count.
+    // On `threads` threads: the same entries in the same order for any count. `new_index`: the
+    // particles were renumbered since the last build (the one at i is now at new_index[i]), so
+    // the contacts carried over are renumbered too; null: they were not.
     void build(const std::vector<Vec<D>>& r, const std::vector<std::uint32_t>& species,
-               int threads = 1);
+               int threads = 1, const std::uint32_t* new_index = nullptr);
+    // The particles in the order of this grid's cells (x fastest), increasing index within a
+    // cell: slot -> particle. Neighbours in space then lie near each other in memory (the engine
+    // renumbers its particles in this order, DemEngine::sort_particles).
+    const std::vector<std::uint32_t>& spatial_order(const std::vector<Vec<D>>& r,
+                                                    const std::vector<std::uint32_t>& species) {
+        grid(r);
+        bin(r, species);
+        return order_;
+    }
 
     std::size_t entries() const { return partner.size(); }
     std::size_t cells() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
