@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "libgran/core/random.hpp"
+#include "libgran/core/state_archive.hpp"
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/scene/placement.hpp"
 #include "tests/support/contacts.hpp"
@@ -145,6 +146,16 @@ void expect_same_state(const DemEngine<D>& a, const DemEngine<D>& b, const std::
     EXPECT_EQ(a.wall_hits(), b.wall_hits()) << what;
     EXPECT_TRUE(same_bits(a.ids(), b.ids())) << what << ": storage order";
     EXPECT_EQ(a.counters().sorts, b.counters().sorts) << what;
+}
+
+// `to` continues from `from`'s state, written and read back through a checkpoint.
+template <int D>
+void restore_checkpoint(DemEngine<D>& from, DemEngine<D>& to) {
+    StateArchive out = StateArchive::saver();
+    from.checkpoint(out);
+    StateArchive in = StateArchive::loader(out.bytes());
+    to.checkpoint(in);
+    ASSERT_TRUE(in.at_end());
 }
 
 }  // namespace gran::testing

@@ -151,12 +151,9 @@ TEST(DemSort, CheckpointCarriesTheOrderAndTheNextSort) {
         straight.step();
         first.step();
     }
-    StateArchive out = StateArchive::saver();
-    first.checkpoint(out);
     DemEngine<3> second = sorted_engine<3>(bed, 40);
-    StateArchive in = StateArchive::loader(out.bytes());
-    second.checkpoint(in);
-    ASSERT_TRUE(in.at_end());
+    testing::restore_checkpoint<3>(first, second);
+    if (HasFatalFailure()) return;
     const std::uint64_t sorts_before = straight.counters().sorts;
     for (int s = 0; s < 130; ++s) {
         straight.step();

@@ -86,12 +86,9 @@ TEST(DemThreads, CheckpointOfOneThreadContinuesBitIdenticallyOnTwo) {
         straight.step();
         first.step();
     }
-    StateArchive out = StateArchive::saver();
-    first.checkpoint(out);
     DemEngine<3> second = bed_engine<3>(bed, 2);
-    StateArchive in = StateArchive::loader(out.bytes());
-    second.checkpoint(in);
-    ASSERT_TRUE(in.at_end());
+    testing::restore_checkpoint<3>(first, second);
+    if (HasFatalFailure()) return;
     for (int s = 0; s < 150; ++s) {
         straight.step();
         second.step();
