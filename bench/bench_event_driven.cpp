@@ -23,6 +23,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -66,6 +67,7 @@ struct Options {
     CellLayout cell_layout =
         CellLayout::automatic;  // --cell-layout: the engine's choice, or forced
     double skin = -1;           // --skin: neighbour shells' skin (negative: the engine's choice)
+    QueueLayout queue = QueueLayout::automatic;  // --queue: the engine's choice, or forced
 };
 
 struct Result {
@@ -228,6 +230,7 @@ Result run_case(const Case& c, const Options& opt) {
     for (std::size_t i = 0; i < c.n; ++i) vx0[i] = float(p.v[i][0]);
     EngineSettings settings;
     settings.cell_layout = opt.cell_layout;
+    settings.queue_layout = opt.queue;
     settings.neighbour_skin = opt.skin;
     EventDrivenEngine<D> engine(box, table, elastic(table, D), std::move(p), settings);
     res.setup_s = wall_seconds() - t_setup;
@@ -288,11 +291,20 @@ std::vector<std::string> split(const std::string& s) {
     return out;
 }
 
+// The value named by a command-line word, or std::invalid_argument (a usage error).
+template <class E>
+E parse_choice(const std::string& word, std::initializer_list<std::pair<const char*, E>> choices) {
+    for (const auto& [name, value] : choices)
+        if (word == name) return value;
+    throw std::invalid_argument(word);
+}
+
 void usage(std::FILE* f) {
     std::fprintf(
         f,
         "usage: gran_bench [--quick] [--cases F1,F2,...] [--n N1,N2,...] [--csv PATH] "
-        "[--equil C] [--shuffle] [--seed S] [--cell-layout L] [--skin S]\n"
+        "[--equil C] [--shuffle] [--seed S] [--cell-layout L] [--queue Q] [--slice-entries E]\n"
+        "  [--skin S]\n"
         "  Collisions per CPU second of the event-driven engine, elastic monodisperse hard\n"
         "  disks (phi 0.1, 0.5) and spheres (phi 0.1, 0.2, 0.3), N = 1e4 and 1e5, periodic.\n"
         "  --quick    short smoke run (fewer collisions)\n"
@@ -303,6 +315,9 @@ void usage(std::FILE* f) {
         "  --seed     placement and velocity seed (default 12345)\n"
         "  --cell-layout auto|blocks|lists: the engine's choice (default), or the cells' contents\n"
         "             forced to per-cell blocks or linked lists (cell_list.hpp)\n"
+        "  --queue auto|heap|calendar: the engine's choice (default), or the event queue forced\n"
+        "             to one heap or to a calendar of time slices (event_queue.hpp)\n"
+        "  --slice-entries E  entries per calendar slice (default 4; EventQueue::slice_entries)\n"
         "  --skin S   neighbour shells of skin S largest diameters (0: cells only); default: the\n"
         "             engine's choice from the packing fraction (neighbour_shells.hpp)\n"
         "  --dimension D1,D2 and --packing-fraction P1,P2,...: run these geometries instead of\n"
@@ -372,15 +387,20 @@ std::optional<Options> parse(int argc, char** argv) {
             } else if (a == "--cell-layout") {
                 auto v = value();
                 if (!v) return std::nullopt;
-                if (*v == "auto") {
-                    opt.cell_layout = CellLayout::automatic;
-                } else if (*v == "blocks") {
-                    opt.cell_layout = CellLayout::blocks;
-                } else if (*v == "lists") {
-                    opt.cell_layout = CellLayout::lists;
-                } else {
-                    throw std::invalid_argument(*v);
-                }
+                opt.cell_layout = parse_choice<CellLayout>(*v, {{"auto", CellLayout::automatic},
+                                                                {"blocks", CellLayout::blocks},
+                                                                {"lists", CellLayout::lists}});
+            } else if (a == "--queue") {
+                auto v = value();
+                if (!v) return std::nullopt;
+                opt.queue = parse_choice<QueueLayout>(*v, {{"auto", QueueLayout::automatic},
+                                                           {"heap", QueueLayout::heap},
+                                                           {"calendar", QueueLayout::calendar}});
+            } else if (a == "--slice-entries") {
+                auto v = value();
+                if (!v) return std::nullopt;
+                EventQueue::slice_entries = std::stod(*v);
+                if (!(EventQueue::slice_entries > 0)) throw std::invalid_argument(*v);
             } else if (a == "--skin") {
                 auto v = value();
                 if (!v) return std::nullopt;

@@ -46,7 +46,7 @@ EventDrivenEngine<D>::EventDrivenEngine(const Box<D>& box, const SpeciesTable& t
     const std::size_t n = p_.size();
     count_.assign(n, 0);
     last_collision_.assign(n, -kInf);
-    events_.reset(n);
+    events_.reset(n, EventQueue::calendar_for(settings_.queue_layout, n));
     now_ = 0;
     for (std::size_t i = 0; i < n; ++i) now_ = std::max(now_, p_.t[i]);
     set_up_pair_search();

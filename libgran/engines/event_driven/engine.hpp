@@ -44,10 +44,11 @@
 namespace gran {
 
 struct EngineSettings {
-    bool tc_guard = true;                            // TC model on by default
-    double tc = 1e-6;                                // [time]
-    std::array<double, 3> gravity{0, 0, 0};          // uniform acceleration [length/time^2]
-    CellLayout cell_layout = CellLayout::automatic;  // forced only by benchmarks (gran_bench)
+    bool tc_guard = true;                               // TC model on by default
+    double tc = 1e-6;                                   // [time]
+    std::array<double, 3> gravity{0, 0, 0};             // uniform acceleration [length/time^2]
+    CellLayout cell_layout = CellLayout::automatic;     // forced only by benchmarks (gran_bench)
+    QueueLayout queue_layout = QueueLayout::automatic;  // forced only by benchmarks and tests
     // Neighbour shells' skin in largest diameters: negative, the engine chooses from the packing
     // fraction (choose_neighbour_skin); 0, cells only; > 0, shells of this skin (benchmarks and
     // tests; refused with gravity).
@@ -141,6 +142,8 @@ class EventDrivenEngine {
     // storage index of a particle changes; ids()[k] is the original index (placement order) of the
     // particle stored at k. Collision records carry original ids.
     const std::vector<std::uint32_t>& ids() const { return id_; }
+    // Whether the event queue is a calendar of time slices (event_queue.hpp) or one heap.
+    bool event_calendar() const { return events_.calendar(); }
     // The neighbour shells' skin in largest diameters, 0 if the engine uses cells.
     double neighbour_skin() const { return shells_on_ ? shells_.skin() / largest_diameter() : 0.0; }
 

@@ -1,9 +1,9 @@
 #pragma once
-// The pending events of the event-driven engine: one per particle, ordered by an indexed 4-ary
-// heap (event_queue.hpp). A particle's pending event is one 32-byte record (time, kind, code, the
-// partner's counter, the kept collision): an event reads and writes all of them, and at
-// N = 10^6, where the particle of each event is a random one, six parallel arrays were six cache
-// lines from memory per event and the record is one.
+// The pending events of the event-driven engine: one per particle, ordered by the event queue
+// (event_queue.hpp: a 4-ary heap, or a calendar of time slices at large N). A particle's pending
+// event is one 32-byte record (time, kind, code, the partner's counter, the kept collision): an
+// event reads and writes all of them, and at N = 10^6, where the particle of each event is a random
+// one, six parallel arrays were six cache lines from memory per event and the record is one.
 //  - An event is a collision (code: the partner), a cell crossing, a wall hit or a periodic wrap
 //    (code: 2 axis + side), a neighbour-shell exit, or none.
 //  - Invalidation is lazy: a collision stores the partner's collision counter at prediction; if
@@ -26,11 +26,12 @@ enum class EventKind : std::uint8_t { none, collision, cell, wall, shell, wrap }
 
 class Scheduler {
   public:
-    // n particles, none with an event.
-    void reset(std::size_t n) {
+    // n particles, none with an event; `calendar`: the queue's layout (event_queue.hpp).
+    void reset(std::size_t n, bool calendar) {
         pending_.assign(n, Pending{});
-        queue_.reset(n);
+        queue_.reset(n, calendar);
     }
+    bool calendar() const { return queue_.calendar(); }
 
     // The earliest collision of a scan (partner -1: none) and, if any, the partner's collision
     // counter then.
@@ -80,7 +81,7 @@ class Scheduler {
             if (e.kept_partner >= 0)
                 e.kept_partner = std::int32_t(inv[std::size_t(e.kept_partner)]);
         }
-        queue_.reset(pending_.size());
+        queue_.reset(pending_.size(), queue_.calendar());
         rebuild();
     }
 
