@@ -23,7 +23,7 @@ void CellList<D>::build(const Box<D>& box, double width, const std::vector<Vec<D
     if (slots_) {
         blocks_.assign(total_ * std::size_t(stride_), 0);
     } else {
-        head_.assign(total_, -1);
+        head_.assign(total_, kEmpty);
     }
     // A gather copies whole blocks (27 cells' worth at most); a linked-list gather may collect
     // every particle. Each layout keeps only its own per-particle arrays (memory at N = 10^6).
@@ -126,7 +126,7 @@ void CellList<D>::reorder(const std::vector<std::uint32_t>& order) {
     apply_order(cell_of_, order);
     // Refilled in the new order, so each cell's contents run in increasing storage order.
     if (slots_) clear_counts();
-    std::fill(head_.begin(), head_.end(), -1);
+    std::fill(head_.begin(), head_.end(), kEmpty);
     for (std::size_t k = 0; k < n_; ++k) insert(std::uint32_t(k), cell_of_[k]);
 }
 

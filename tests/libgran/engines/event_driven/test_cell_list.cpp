@@ -77,11 +77,12 @@ void cross_at_random(CellList<3>& cells, std::size_t n, int crossings, unsigned 
     }
 }
 
-void check_layout(std::size_t uniform, std::size_t crowd, bool blocks) {
+void check_layout(std::size_t uniform, std::size_t crowd, bool blocks,
+                  CellLayout layout = CellLayout::automatic) {
     const auto r = positions(uniform, crowd, 7);
     const std::size_t n = r.size();
     CellList<3> cells;
-    cells.build(periodic_cube(), 1.0, r);
+    cells.build(periodic_cube(), 1.0, r, layout);
     ASSERT_EQ(cells.cells(0), kCells);
     ASSERT_EQ(cells.blocks(), blocks);
     expect_every_scan_exact(cells, n);
@@ -121,6 +122,13 @@ TEST(CellList, ACellOverflowingItsBlockGrowsAndKeepsEveryParticle) {
 
 TEST(CellList, LinkedListsOfADiluteGridGatherExactlyTheNeighbourCells) {
     check_layout(60, 5, false);  // 0.12 particles per cell: linked lists
+}
+
+TEST(CellList, LinkedListsOfACrowdedGridKeepEveryParticleAsCellsFillAndEmpty) {
+    // Lists forced at 0.86 particles per cell and a crowd of 40: cells go from one particle to
+    // several and back at every crossing, so a head's tag (its first particle has a successor)
+    // is set and cleared from every position in a list.
+    check_layout(400, 40, false, CellLayout::lists);
 }
 
 // n particles on a simple cubic lattice at 0.8 per cell (cells of width 1).
