@@ -1,6 +1,8 @@
 #include "libgran/engines/event_driven/cell_list.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "libgran/engines/cell_grid.hpp"
 #include "libgran/engines/event_driven/reorder.hpp"
@@ -11,6 +13,12 @@ template <int D>
 void CellList<D>::build(const Box<D>& box, double width, const std::vector<Vec<D>>& r,
                         CellLayout layout) {
     n_ = r.size();
+    // Particle ids are int32 links, and a list's head holds its first id shifted left by one
+    // (the tag, cell_list.hpp): ids must stay below 2^30.
+    if (n_ >= (std::size_t(1) << 30)) {
+        throw std::length_error("CellList: at most 2^30 - 1 particles, " + std::to_string(n_) +
+                                " given");
+    }
     size_grid(box, width, n_);
     find_images(box);
     slots_ = layout == CellLayout::automatic

@@ -1,5 +1,7 @@
 #include "libgran/engines/event_driven/engine.hpp"
 
+#include <emmintrin.h>
+
 #include <stdexcept>
 
 #include "libgran/core/registry.hpp"
@@ -123,8 +125,57 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* c
         __builtin_prefetch(&v[j]);
         __builtin_prefetch(&t_local[j]);
     }
+    // Without gravity, two candidates per step (pair_collision_times_two): the same numbers as
+    // the one-candidate loop below, which takes the last odd candidate.
+    std::size_t first = 0;
+    auto scan_two = [&](auto contact) {
+        __m128d ri2[D], vi2[D], length[D], half[D], minus_half[D];
+        bool periodic[D];
+        for (int k = 0; k < D; ++k) {
+            ri2[std::size_t(k)] = _mm_set1_pd(ri[k]);
+            vi2[std::size_t(k)] = _mm_set1_pd(vi[k]);
+            periodic[std::size_t(k)] = box_.periodic[std::size_t(k)];
+            const double h = 0.5 * box_.length[k];  // as Box::separation
+            length[std::size_t(k)] = _mm_set1_pd(box_.length[k]);
+            half[std::size_t(k)] = _mm_set1_pd(h);
+            minus_half[std::size_t(k)] = _mm_set1_pd(-h);
+        }
+        const __m128d now2 = _mm_set1_pd(now);
+        for (; first + 2 <= n; first += 2) {
+            const std::uint32_t j0 = buf[first], j1 = buf[first + 1];
+            const __m128d dt = _mm_sub_pd(now2, _mm_set_pd(t_local[j1], t_local[j0]));
+            __m128d dr[D], dv[D];
+            for (std::size_t k = 0; k < std::size_t(D); ++k) {
+                const __m128d vj = _mm_set_pd(v[j1][int(k)], v[j0][int(k)]);
+                const __m128d rj =
+                    _mm_add_pd(_mm_set_pd(r[j1][int(k)], r[j0][int(k)]), _mm_mul_pd(vj, dt));
+                __m128d d = _mm_sub_pd(ri2[k], rj);
+                if (periodic[k]) {  // Box::separation's minimum image, lane by lane
+                    const __m128d up = _mm_cmpgt_pd(d, half[k]);
+                    const __m128d down = _mm_cmplt_pd(d, minus_half[k]);
+                    const __m128d moved = _mm_or_pd(_mm_and_pd(up, _mm_sub_pd(d, length[k])),
+                                                    _mm_and_pd(down, _mm_add_pd(d, length[k])));
+                    d = _mm_or_pd(moved, _mm_andnot_pd(_mm_or_pd(up, down), d));
+                }
+                dr[k] = d;
+                dv[k] = _mm_sub_pd(vi2[k], vj);
+            }
+            const __m128d t =
+                pair_collision_times_two<D>(dr, dv, _mm_set_pd(contact(j1), contact(j0)));
+            const double t0 = _mm_cvtsd_f64(t), t1 = _mm_cvtsd_f64(_mm_unpackhi_pd(t, t));
+            if (j0 != i && t0 < best) {
+                best = t0;
+                partner = std::int32_t(j0);
+            }
+            if (j1 != i && t1 < best) {
+                best = t1;
+                partner = std::int32_t(j1);
+            }
+        }
+    };
     auto scan = [&](auto contact) {
-        for (std::size_t m = 0; m < n; ++m) {
+        if constexpr (!Gravity) scan_two(contact);
+        for (std::size_t m = first; m < n; ++m) {
             const std::uint32_t j = buf[m];
             if (j == i) continue;
             const double dt = now - t_local[j];
