@@ -1,5 +1,7 @@
 #pragma once
 // Simulation box [0, L_a) per axis; each axis periodic or bounded by hard walls.
+#include <emmintrin.h>
+
 #include <array>
 
 #include "libgran/core/vec.hpp"
@@ -28,6 +30,34 @@ struct Box {
         }
         return d;
     }
+};
+
+// Box::separation's minimum image for two pairs at once, one in each lane of an SSE2 register
+// (the event-driven scan's two-lane pair test, event_times.hpp): along axis k, each lane is bit
+// for bit the k-th component of separation() for its pair (the same half length, comparisons and
+// one addition or subtraction). Built once per scan: the per-axis constants are broadcast here.
+template <int D>
+struct MinimumImageTwo {
+    explicit MinimumImageTwo(const Box<D>& box) {
+        for (int k = 0; k < D; ++k) {
+            const double h = 0.5 * box.length[k];  // as Box::separation
+            periodic[k] = box.periodic[std::size_t(k)];
+            length[k] = _mm_set1_pd(box.length[k]);
+            half[k] = _mm_set1_pd(h);
+            minus_half[k] = _mm_set1_pd(-h);
+        }
+    }
+    // d: the two pairs' a - b along axis k.
+    __m128d operator()(__m128d d, int k) const {
+        if (!periodic[k]) return d;
+        const __m128d up = _mm_cmpgt_pd(d, half[k]);
+        const __m128d down = _mm_cmplt_pd(d, minus_half[k]);
+        const __m128d moved = _mm_or_pd(_mm_and_pd(up, _mm_sub_pd(d, length[k])),
+                                        _mm_and_pd(down, _mm_add_pd(d, length[k])));
+        return _mm_or_pd(moved, _mm_andnot_pd(_mm_or_pd(up, down), d));
+    }
+    __m128d length[D], half[D], minus_half[D];
+    bool periodic[D];
 };
 
 }  // namespace gran

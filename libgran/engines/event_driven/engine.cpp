@@ -129,17 +129,12 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* c
     // the one-candidate loop below, which takes the last odd candidate.
     std::size_t first = 0;
     auto scan_two = [&](auto contact) {
-        __m128d ri2[D], vi2[D], length[D], half[D], minus_half[D];
-        bool periodic[D];
+        __m128d ri2[D], vi2[D];
         for (int k = 0; k < D; ++k) {
             ri2[std::size_t(k)] = _mm_set1_pd(ri[k]);
             vi2[std::size_t(k)] = _mm_set1_pd(vi[k]);
-            periodic[std::size_t(k)] = box_.periodic[std::size_t(k)];
-            const double h = 0.5 * box_.length[k];  // as Box::separation
-            length[std::size_t(k)] = _mm_set1_pd(box_.length[k]);
-            half[std::size_t(k)] = _mm_set1_pd(h);
-            minus_half[std::size_t(k)] = _mm_set1_pd(-h);
         }
+        const MinimumImageTwo<D> image(box_);
         const __m128d now2 = _mm_set1_pd(now);
         for (; first + 2 <= n; first += 2) {
             const std::uint32_t j0 = buf[first], j1 = buf[first + 1];
@@ -149,15 +144,7 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* c
                 const __m128d vj = _mm_set_pd(v[j1][int(k)], v[j0][int(k)]);
                 const __m128d rj =
                     _mm_add_pd(_mm_set_pd(r[j1][int(k)], r[j0][int(k)]), _mm_mul_pd(vj, dt));
-                __m128d d = _mm_sub_pd(ri2[k], rj);
-                if (periodic[k]) {  // Box::separation's minimum image, lane by lane
-                    const __m128d up = _mm_cmpgt_pd(d, half[k]);
-                    const __m128d down = _mm_cmplt_pd(d, minus_half[k]);
-                    const __m128d moved = _mm_or_pd(_mm_and_pd(up, _mm_sub_pd(d, length[k])),
-                                                    _mm_and_pd(down, _mm_add_pd(d, length[k])));
-                    d = _mm_or_pd(moved, _mm_andnot_pd(_mm_or_pd(up, down), d));
-                }
-                dr[k] = d;
+                dr[k] = image(_mm_sub_pd(ri2[k], rj), int(k));  // Box::separation, two lanes
                 dv[k] = _mm_sub_pd(vi2[k], vj);
             }
             const __m128d t =
