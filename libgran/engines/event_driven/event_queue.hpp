@@ -36,14 +36,19 @@ enum class QueueLayout { automatic, heap, calendar };
 
 class EventQueue {
   public:
-    static constexpr std::size_t kCalendarFromEntries = 100000;
+    // With the next slice asked for ahead, the calendar was 1.00-1.05x the heap at 2000-5000
+    // particles and 1.06-1.16x at 10^4 (docs/performance.md, "The calendar from 4096 particles
+    // on"). Below the threshold the heap keeps the order of equal times that the regression
+    // scenes (at most a few hundred particles) were made with.
+    static constexpr std::size_t kCalendarFromEntries = 4096;
     static bool calendar_for(QueueLayout layout, std::size_t n) {
         return layout == QueueLayout::automatic ? n >= kCalendarFromEntries
                                                 : layout == QueueLayout::calendar;
     }
     // Calendar slices hold about this many entries each (the heap of the current slice); the
-    // cycle spans this many median event delays. The slice size was measured (docs/performance.md,
-    // "The calendar queue from 10^5 particles on"); the cycle length was not varied.
+    // cycle spans this many median event delays. The slice size was measured at 10^6 particles
+    // (docs/performance.md, "The calendar queue from 10^5 particles on"); the cycle length was not
+    // varied.
     static inline double slice_entries = 4.0;
     static inline double cycle_medians = 8.0;
 

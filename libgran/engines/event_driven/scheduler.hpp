@@ -58,6 +58,12 @@ class Scheduler {
     void rebuild() {
         queue_.rebuild([this](std::uint32_t k) { return pending_[k].time; });
     }
+    // rebuild() into a plain heap, whatever the layout was (EventDrivenEngine::
+    // velocities_changed: a queue rebuilt at every thermostat kick).
+    void rebuild_as_heap() {
+        queue_.reset(pending_.size(), false);
+        rebuild();
+    }
 
     std::uint32_t next() const { return queue_.top(); }
     double next_time() const { return queue_.top_time(); }

@@ -187,5 +187,36 @@ TEST(EventQueue, EngineOnTheCalendarMeetsTheHeapsCollisionsOfDisksUnderGravityBe
     expect_layouts_agree<2>(box, t, c, p, s, 40000, 10000);
 }
 
+// The engine's own choice: a calendar from EventQueue::kCalendarFromEntries particles on, turned
+// into a heap at the first change of every velocity (a thermostat's kick, which rebuilds the
+// queue each time); a layout forced by the settings stays. After the change the collisions still
+// come in time order.
+TEST(EventQueue, EngineTurnsItsOwnCalendarIntoAHeapWhenEveryVelocityChangesAndKeepsAForcedOne) {
+    const SpeciesTable small = testing::bidisperse(2000, 2000, 0.8);  // below the threshold
+    const SpeciesTable large = testing::bidisperse(2500, 2500, 0.8);
+    for (const SpeciesTable* t : {&small, &large}) {
+        for (QueueLayout layout : {QueueLayout::automatic, QueueLayout::calendar}) {
+            const auto c = testing::contacts_of(*t, "{alpha: 1.0}");
+            const Box<3> box = testing::cube_for<3>(*t, 0.2, true);
+            const Particles<3> p = testing::placed<3>(box, *t, c, 54);
+            EngineSettings s;
+            s.queue_layout = layout;
+            EventDrivenEngine<3> engine(box, *t, c, p, s);
+            const bool calendar = layout == QueueLayout::calendar ||
+                                  engine.particles().size() >= EventQueue::kCalendarFromEntries;
+            EXPECT_EQ(engine.event_calendar(), calendar) << engine.particles().size();
+            engine.advance(kNeverTime, 5000);
+            engine.velocities_changed();
+            EXPECT_EQ(engine.event_calendar(), layout == QueueLayout::calendar);
+            testing::CollisionLog<3> log;
+            engine.set_collision_sink(&log);
+            engine.advance(kNeverTime, 25000);  // the limit counts from the start
+            ASSERT_EQ(log.times.size(), 20000u);
+            for (std::size_t m = 1; m < log.times.size(); ++m)
+                ASSERT_LE(log.times[m - 1], log.times[m]) << "collision " << m;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace gran
