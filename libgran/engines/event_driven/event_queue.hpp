@@ -37,7 +37,7 @@ enum class QueueLayout { automatic, heap, calendar };
 class EventQueue {
   public:
     // With the next slice asked for ahead, the calendar was 1.00-1.05x the heap at 2000-5000
-    // particles and 1.06-1.16x at 10^4 (docs/performance.md, "The calendar from 4096 particles
+    // particles and 1.05-1.25x at 10^4 (docs/performance.md, "The calendar from 4096 particles
     // on"). Below the threshold the heap keeps the order of equal times that the regression
     // scenes (at most a few hundred particles) were made with.
     static constexpr std::size_t kCalendarFromEntries = 4096;
