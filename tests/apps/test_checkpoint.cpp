@@ -137,6 +137,11 @@ void interrupt_then_resume(const std::string& scene, const std::string& out, con
     {
         GranProcess p({"run", kScenes + scene, "-o", out, "-q"}, log);
         ASSERT_FALSE(p.wait_up_to(after)) << "ended before the signal: " << read_text(log);
+        // And not before the run is under way (its partial result exists, so its signal handler
+        // is in place): a sanitized build takes longer than `after` to start (0.7 s for
+        // `gran --version` under ASan), and a signal before main() kills the process.
+        for (int poll = 0; poll < 6000 && !fs::exists(out + ".part"); ++poll)
+            ASSERT_FALSE(p.wait_up_to(0.01)) << "ended before the signal: " << read_text(log);
         p.send(SIGTERM);
         ASSERT_TRUE(p.wait_up_to(60));
         ASSERT_EQ(p.exit_code(), 3) << read_text(log);
