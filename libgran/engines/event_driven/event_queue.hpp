@@ -58,8 +58,10 @@ class EventQueue {
         calendar_ = calendar;
         ahead_ = -1;
         pos_.resize(n);
-        nodes_.clear();
-        head_.clear();
+        // Freed, not cleared: a calendar turned into a heap (Scheduler::rebuild_as_heap, at a
+        // thermostat's first kick) keeps no links it will not use (16 B per particle).
+        nodes_ = {};
+        head_ = {};
         if (!calendar_) {
             active_ = false;
             storage_.assign(n + kArity, Entry{kNever, 0, 0});  // top() reads node 0 if n = 0
