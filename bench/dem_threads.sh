@@ -1,17 +1,43 @@
 #!/bin/sh
 # Strong scaling of one DEM run (engine.threads): the vibrated bed of gran_bench_dem (W = 9) at
 # N = 10^4 and 10^5, and the bed settled on a static floor (W = 0, 10 periods after the drop) at
-# N = 10^4; 1 and 2 threads alternating, twice, one process per run. The speed-up is the ratio of the psteps/s_wall columns
-# of neighbouring lines; the state_hash column is the same for 1 and 2 threads (no bit changes).
+# N = 10^4. Each round of a case runs, one after another:
+#   1. one run on 1 thread (its wall-clock rate: the reference of the round);
+#   2. one run on 2 threads: "2 threads / 1" is its wall rate over run 1's;
+#   3. two independent 1-thread runs at once: "2 runs / 1" is the sum of their rates over run 1's.
+# The third is what this machine gives two copies of the same work at once: the ceiling for
+# two threads, if they shared nothing. The state hash of every run of a case is printed and must
+# be the same (no bit depends on the thread count). The last line of each case gives the medians.
 #
-#   bench/dem_threads.sh [BUILD_DIR]      (about 15 minutes on 2 cores; needs an idle machine)
+#   bench/dem_threads.sh [BUILD_DIR] [ROUNDS]   (ROUNDS default 3: about 35 minutes; needs an
+#                                                otherwise idle machine)
 B=${1:-build}/gran_bench_dem
+ROUNDS=${2:-3}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+# rate FILE: the wall-clock psteps/s column of gran_bench_dem's result line.
+rate() { tail -1 "$1" | awk '{print $5}'; }
+hash_of() { tail -1 "$1" | awk '{print $NF}'; }
+median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
 for case in "10000 9 1 1e8" "100000 9 1 4e8" "10000 0 10 1e8"; do
   set -- $case
-  for rep in 1 2; do
-    for t in 1 2; do
-      printf "N=%s W=%s threads=%s rep=%s: " "$1" "$2" "$t" "$rep"
-      "$B" --sizes "$1" --W "$2" --warmup-periods "$3" --particle-steps "$4" --threads "$t" | tail -1
-    done
+  args="--sizes $1 --W $2 --warmup-periods $3 --particle-steps $4"
+  : > "$TMP/threads" ; : > "$TMP/pair"
+  for round in $(seq "$ROUNDS"); do
+    "$B" $args --threads 1 > "$TMP/one" || exit 1
+    "$B" $args --threads 2 > "$TMP/two" || exit 1
+    "$B" $args --threads 1 > "$TMP/a" & pa=$!
+    "$B" $args --threads 1 > "$TMP/b" || exit 1
+    wait $pa || exit 1
+    r1=$(rate "$TMP/one"); r2=$(rate "$TMP/two"); ra=$(rate "$TMP/a"); rb=$(rate "$TMP/b")
+    s=$(awk -v a="$r2" -v b="$r1" 'BEGIN {printf "%.2f", a / b}')
+    c=$(awk -v a="$ra" -v b="$rb" -v r="$r1" 'BEGIN {printf "%.2f", (a + b) / r}')
+    echo "$s" >> "$TMP/threads"; echo "$c" >> "$TMP/pair"
+    printf "N=%s W=%s round %s: 1 thread %s, 2 threads %s, two runs %s + %s psteps/s (wall) | 2 threads / 1 = %s | 2 runs / 1 = %s | hashes %s %s %s %s\n" \
+      "$1" "$2" "$round" "$r1" "$r2" "$ra" "$rb" "$s" "$c" \
+      "$(hash_of "$TMP/one")" "$(hash_of "$TMP/two")" "$(hash_of "$TMP/a")" "$(hash_of "$TMP/b")"
   done
+  printf "N=%s W=%s: median 2 threads / 1 = %s [%s-%s] | median 2 runs / 1 = %s\n" "$1" "$2" \
+    "$(median < "$TMP/threads")" "$(sort -g "$TMP/threads" | head -1)" \
+    "$(sort -g "$TMP/threads" | tail -1)" "$(median < "$TMP/pair")"
 done

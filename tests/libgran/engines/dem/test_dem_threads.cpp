@@ -50,24 +50,28 @@ TEST(DemThreads, StepsOnTwoAndThreeThreadsGiveTheBitsOfOneThread) {
     check_thread_counts<3>();
 }
 
-// Many contacts per grain: the threads sum the forces particle by particle.
+// Many contacts per grain: the threads sum the forces particle by particle, on two and on three
+// threads.
 template <int D>
 void check_crowded() {
     const Bed<D> lattice = compressed_lattice<D>(D == 2 ? 40 : 12);
     const std::size_t n = lattice.particles.size();
     DemEngine<D> one = bed_engine<D>(lattice, 1);
     DemEngine<D> two = bed_engine<D>(lattice, 2);
+    DemEngine<D> three = bed_engine<D>(lattice, 3);
     // Every lattice neighbour overlaps at the start: 2 (disks) or 3 (spheres) contacts per grain.
     EXPECT_GE(one.counters().active_contacts, std::uint64_t(D) * n) << "contacts at the start";
     std::uint64_t crowded_steps = 0;  // steps with over n / 4 contacts: summed particle-wise
     for (int s = 0; s < 200; ++s) {
         one.step();
         two.step();
+        three.step();
         crowded_steps += 4 * one.counters().active_contacts >= n;
     }
     EXPECT_GT(crowded_steps, 20u);
     EXPECT_TRUE(std::isfinite(one.energies().total())) << "the crystal blew up";
     expect_same_state(one, two, "crowded, 2 threads");
+    expect_same_state(one, three, "crowded, 3 threads");
 }
 
 TEST(DemThreads, CrowdedGrainsOnTwoThreadsGiveTheBitsOfOneThread) {
