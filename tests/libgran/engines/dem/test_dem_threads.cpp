@@ -74,7 +74,7 @@ void check_crowded() {
     expect_same_state(one, three, "crowded, 3 threads");
 }
 
-TEST(DemThreads, CrowdedGrainsOnTwoThreadsGiveTheBitsOfOneThread) {
+TEST(DemThreads, CrowdedGrainsOnTwoAndThreeThreadsGiveTheBitsOfOneThread) {
     check_crowded<2>();
     check_crowded<3>();
 }
