@@ -1,4 +1,4 @@
-#!/bin/sh
+#!/usr/bin/env bash
 # Strong scaling of one DEM run (engine.threads): the vibrated bed of gran_bench_dem (W = 9) at
 # N = 10^4 and 10^5, and the bed settled on a static floor (W = 0, 10 periods after the drop) at
 # N = 10^4. Each round of a case runs, one after another:
@@ -18,7 +18,9 @@ trap 'rm -rf "$TMP"' EXIT
 # rate FILE: the wall-clock psteps/s column of gran_bench_dem's result line.
 rate() { tail -1 "$1" | awk '{print $5}'; }
 hash_of() { tail -1 "$1" | awk '{print $NF}'; }
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+# median (of the numbers on stdin), shared with the peer comparisons.
+# shellcheck source=peer_compare.sh
+source "$(dirname "${BASH_SOURCE[0]}")/peer_compare.sh"
 for case in "10000 9 1 1e8" "100000 9 1 4e8" "10000 0 10 1e8"; do
   set -- $case
   args="--sizes $1 --W $2 --warmup-periods $3 --particle-steps $4"
