@@ -1,10 +1,15 @@
 #include "libgran/study/study_merge.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <sys/file.h>
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -297,6 +302,34 @@ void merge_study(const Study& st, const std::string& outdir, const RunFiles& fil
     write_merged_file(rep.merged, st, files, have, a, rep, started);
     if (st.has_tradeoff) write_tradeoff_report(st, outdir, stem, a.tradeoff, rep);
     if (!a.fits.empty()) write_fit_report(outdir, stem, a.fits);
+}
+
+StudyMergeLock::StudyMergeLock(const Study& st, const std::string& outdir) {
+    fs::create_directories(outdir);
+    const std::string stem = fs::path(st.file).stem().string();
+    const std::string path = (fs::path(outdir) / ("." + stem + ".merge.lock")).string();
+    // Close-on-exec: the runs a study starts must not hold its lock.
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) {
+        spdlog::warn("study: cannot open the merge lock {} ({}); merging without it", path,
+                     std::strerror(errno));
+        return;
+    }
+    if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+    if (errno == EWOULDBLOCK) {
+        spdlog::info("study: another merge of {} is writing in {}; waiting for it", st.file,
+                     outdir);
+        int rc = 0;
+        while ((rc = ::flock(fd_, LOCK_EX)) != 0 && errno == EINTR) {
+        }
+        if (rc == 0) return;
+    }
+    spdlog::warn("study: cannot lock {} ({}); merging without the lock", path,
+                 std::strerror(errno));
+}
+
+StudyMergeLock::~StudyMergeLock() {
+    if (fd_ >= 0) ::close(fd_);  // releases the lock
 }
 
 }  // namespace gran

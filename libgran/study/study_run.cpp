@@ -170,13 +170,17 @@ class RunPool {
             if (running_.empty()) break;
             wait_for_one();
         }
+        // A stop that came as the last runs ended interrupted nothing: a batch task then exits 0
+        // and is not resubmitted.
+        if (stop_)
+            rep_.interrupted =
+                std::any_of(todo_.begin(), todo_.end(), [&](std::size_t i) { return !have_[i]; });
     }
 
   private:
     void stop_on_interrupt() {
         if (!opt_.interrupt || !opt_.interrupt->load() || stop_) return;
         stop_ = true;
-        rep_.interrupted = true;
         spdlog::warn("study interrupted: stopping {} running runs (they keep what they measured)",
                      running_.size());
         for (const auto& [pid, r] : running_) kill(pid, SIGTERM);
@@ -304,8 +308,24 @@ void record_run_exit(const Study& st, std::size_t i, int code, bool stopping, St
 }
 
 void finish_study(const Study& st, StudyPlan& plan) {
+    const StudyMergeLock lock(st, plan.outdir);
     merge_study(st, plan.outdir, plan.files, plan.have, plan.started, plan.report);
 }
+
+namespace {
+
+// `--merge-only` (a SLURM merge job): the complete runs are found under the merge lock, so of two
+// merges of one study the one that writes last has seen every run that ended before it started.
+StudyReport merge_complete_runs(const Study& st, const StudyOptions& opt) {
+    const StudyMergeLock lock(st, opt.output_dir.empty() ? st.output_dir : opt.output_dir);
+    StudyPlan plan = plan_study(st, opt);
+    spdlog::info("study {}: merging the {} complete runs of {}", st.file, plan.report.reused,
+                 st.runs.size());
+    merge_study(st, plan.outdir, plan.files, plan.have, plan.started, plan.report);
+    return plan.report;
+}
+
+}  // namespace
 
 StudyReport run_study(const Study& st, const StudyOptions& opt) {
     if (opt.forecast) {
@@ -315,16 +335,12 @@ StudyReport run_study(const Study& st, const StudyOptions& opt) {
                                        : int(std::max(1u, std::thread::hardware_concurrency()));
         return run_pilots(st, opt, outdir, jobs);
     }
+    if (opt.merge_only) return merge_complete_runs(st, opt);
     StudyPlan plan = plan_study(st, opt);
-    if (opt.merge_only) {
-        spdlog::info("study {}: merging the {} complete runs of {}", st.file, plan.report.reused,
-                     st.runs.size());
-    } else {
-        spdlog::info("study {}: {} runs, {} already complete, {} to run on {} cores; results in {}",
-                     st.file, st.runs.size(), plan.report.reused, plan.todo.size(), plan.jobs,
-                     plan.outdir);
-        run_locally(st, opt, plan);
-    }
+    spdlog::info("study {}: {} runs, {} already complete, {} to run on {} cores; results in {}",
+                 st.file, st.runs.size(), plan.report.reused, plan.todo.size(), plan.jobs,
+                 plan.outdir);
+    run_locally(st, opt, plan);
     finish_study(st, plan);
     return plan.report;
 }

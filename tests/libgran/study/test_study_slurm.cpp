@@ -1,14 +1,17 @@
 // `gran study --slurm` without a cluster (libgran/study/study_slurm.hpp): the scripts it writes
 // (array size, time-limit warning, resubmission, merge after the array), an array task running
-// exactly its runs, and `--status`. The real cluster is `make test-cluster`
-// (tests/cluster/test_slurm_study.sh).
+// exactly its runs, `--status`, and merge jobs that run at the same time. The real cluster is `make
+// test-cluster` (tests/cluster/test_slurm_study.sh).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
+#include "libgran/study/study_merge.hpp"
 #include "libgran/study/study_slurm.hpp"
+#include "tests/support/gran_process.hpp"
 #include "tests/support/run_gran.hpp"
 #include "tests/support/temp_dir_test.hpp"
 
@@ -82,6 +85,32 @@ TEST_F(StudySlurm, AnArrayTaskRunsItsRunsOnlyAndStatusCountsThem) {
     ASSERT_EQ(merge.exit_code, 0) << merge.output;
     EXPECT_NE(merge.output.find("0 ran, 2 reused, 0 failed"), std::string::npos) << merge.output;
     EXPECT_FALSE(fs::exists(path("out") + "/gas_r1.h5"));
+}
+
+// The array's merge job and a resubmitted task's merge job can start together: the second waits
+// for the first (StudyMergeLock) instead of writing the same merged file at once, and decides
+// which runs are complete only once it has the lock, so it merges a run that ended meanwhile.
+TEST_F(StudySlurm, AMergeJobWaitsForAnotherMergeOfTheStudyAndThenSeesEveryCompleteRun) {
+    const auto task = run_gran({"-q", "study", path("study.yaml"), "-o", path("out"),
+                                "--slurm-task", "0", "--runs-per-task", "4"});
+    ASSERT_EQ(task.exit_code, 0) << task.output;
+    std::optional<gran::StudyMergeLock> other;
+    other.emplace(gran::load_study(path("study.yaml")), path("out"));
+    gran::testing::GranProcess merge(
+        {"-q", "study", path("study.yaml"), "-o", path("out"), "--merge-only"}, path("merge.log"));
+    ASSERT_TRUE(merge.started());
+    EXPECT_FALSE(merge.wait_up_to(1.5)) << read_text(path("merge.log"));
+    EXPECT_FALSE(fs::exists(path("out") + "/study.study.h5"));
+    // The fifth run ends while the merge waits.
+    const auto last = run_gran({"-q", "study", path("study.yaml"), "-o", path("out"),
+                                "--slurm-task", "4", "--runs-per-task", "1"});
+    ASSERT_EQ(last.exit_code, 0) << last.output;
+    other.reset();
+    ASSERT_TRUE(merge.wait_up_to(60));
+    const std::string log = read_text(path("merge.log"));
+    EXPECT_EQ(merge.exit_code(), 0) << log;
+    EXPECT_NE(log.find("0 ran, 5 reused, 0 failed"), std::string::npos) << log;
+    EXPECT_TRUE(fs::exists(path("out") + "/study.study.h5"));
 }
 
 }  // namespace
