@@ -1,8 +1,12 @@
 #include "libgran/core/h5.hpp"
 
+#include <fcntl.h>
 #include <hdf5.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <functional>
 #include <numeric>
 #include <type_traits>
@@ -298,8 +302,29 @@ std::string name_problem(const std::string& name) {
 
 // ---- File -------------------------------------------------------------------------------------
 
+namespace {
+
+// HDF5 opens a file it creates with O_TRUNC and only then takes its lock (flock), so creating a
+// file another process is writing empties it under that writer, and the writer's file is then
+// corrupt (two merges of one study did it: docs/cluster.md). Its lock is probed first instead.
+// Without HDF5's file locking (HDF5_USE_FILE_LOCKING=FALSE) there is nothing to see.
+void refuse_file_in_use(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);  // no file: no writer
+    if (fd < 0) return;
+    const bool in_use = ::flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+    ::close(fd);  // releases the probe's own lock
+    if (in_use) {
+        throw Error("h5: cannot create file '" + path +
+                    "': another process has it open (a second run or merge writing the same "
+                    "file?); it was left as it is");
+    }
+}
+
+}  // namespace
+
 File File::create(const std::string& path) {
     silence_hdf5_errors();
+    refuse_file_in_use(path);
     const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     return File(own(id, "create file", "'" + path + "'"), path);
 }

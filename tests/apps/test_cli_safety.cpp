@@ -123,6 +123,29 @@ TEST_F(CliSafety, UnwritableOutputIsRefusedBeforeTheRunStarts) {
     EXPECT_EQ(read_text(scene), text) << "the scene file was overwritten";
 }
 
+// Two runs writing one result: HDF5 alone truncates a file it creates before finding another
+// process's lock on it, which emptied half of a merged study file in CI (docs/cluster.md). The
+// second run is refused before it runs and the first one's file keeps what it holds.
+TEST_F(CliSafety, ARunWhoseResultAnotherProcessIsWritingIsRefusedAndThatFileKept) {
+    const std::string out = path("r.h5");
+    // The other run, here this test: a run's result is OUT.h5.part while it runs.
+    const std::vector<double> data(1 << 17, 1.5);  // beyond HDF5's sieve buffer: on disk
+    gran::h5::File other = gran::h5::File::create(out + ".part");
+    other.root().write("x", data);
+    other.flush();
+    const Outcome o = run_gran(with_short({"-q", "run", kDemo, "-o", out}));
+    ASSERT_FALSE(o.signaled) << o.output;
+    EXPECT_EQ(o.exit_code, 1) << o.output;
+    EXPECT_NE(o.output.find("'" + out + ".part': another process has it open"), std::string::npos)
+        << o.output;
+    EXPECT_FALSE(fs::exists(out));
+    other.root().write_scalar("after", 2.0);
+    other.close();
+    const gran::h5::File kept = gran::h5::File::open_read(out + ".part");
+    EXPECT_EQ(kept.root().read_doubles("x"), data);
+    EXPECT_EQ(kept.root().read_doubles("after"), std::vector<double>{2.0});
+}
+
 // A tmpfs of 64 KiB fills up while the result is written. Mounting needs root (CAP_SYS_ADMIN);
 // elsewhere the test is skipped and says why.
 class DiskFull : public CliSafety {
