@@ -1,6 +1,5 @@
 #pragma once
-// Splitting a loop over [0, n) into one contiguous chunk per thread, or into small chunks handed
-// to whichever thread is free (OpenMP from the toolchain).
+// Splitting a loop over [0, n) into one contiguous chunk per thread (OpenMP from the toolchain).
 // The chunking is only a schedule: callers make their results independent of it (each index
 // writes its own slots; sums run in a fixed order afterwards), so a run gives the same bits for
 // any thread count. One thread calls the body directly: no runtime call, no outlined function,
@@ -41,42 +40,6 @@ void parallel_chunks(int threads, std::size_t n, Body&& body) {
     (void)threads;
 #endif
     body(std::size_t(0), std::size_t(0), n);
-}
-
-// The chunks of `grain` indices of [0, n) (the last one shorter): chunk c is [c grain, min(n,
-// (c + 1) grain)).
-inline std::size_t chunk_count(std::size_t n, std::size_t grain) {
-    return (n + grain - 1) / grain;
-}
-
-// body(part, chunk, begin, end) for every chunk of `grain` indices, each chunk to whichever of
-// the `threads` threads is free next (OpenMP's dynamic schedule): a thread the machine slows (a
-// busier core, its memory, a longer share of the work) takes fewer chunks, where equal shares
-// would leave the other waiting at the end. Which thread runs a chunk varies from run to run, so
-// callers keep per-`chunk` scratch where order matters and only order-free per-`part` sums
-// (integer counts, maxima). One thread: body(0, 0, 0, n), the serial code as written.
-template <class Body>
-void parallel_dynamic(int threads, std::size_t n, std::size_t grain, Body&& body) {
-#ifdef _OPENMP
-    if (threads > 1) {
-        const auto chunks = static_cast<std::ptrdiff_t>(chunk_count(n, grain));
-#pragma omp parallel num_threads(threads)
-        {
-            const auto part = static_cast<std::size_t>(omp_get_thread_num());
-#pragma omp for schedule(dynamic, 1) nowait
-            for (std::ptrdiff_t c = 0; c < chunks; ++c) {
-                const std::size_t begin = std::size_t(c) * grain;
-                const std::size_t end = begin + grain < n ? begin + grain : n;
-                body(part, std::size_t(c), begin, end);
-            }
-        }
-        return;
-    }
-#else
-    (void)threads;
-    (void)grain;
-#endif
-    body(std::size_t(0), std::size_t(0), std::size_t(0), n);
 }
 
 }  // namespace gran

@@ -292,11 +292,9 @@ void DemEngine<D>::open_step() {
     const std::size_t n = p_.size();
     // Largest displacement since the last build, per thread (a maximum: the same for any split).
     std::array<double, kMaxThreads> moved2{};
-    parallel_dynamic(
-        threads_, n, chunk_of(n),
-        [this, &moved2](std::size_t part, std::size_t, std::size_t i0, std::size_t i1) {
-            moved2[part] = std::max(moved2[part], kick_drift<ClosingKick>(i0, i1));
-        });
+    parallel_chunks(threads_, n, [this, &moved2](std::size_t part, std::size_t i0, std::size_t i1) {
+        moved2[part] = kick_drift<ClosingKick>(i0, i1);
+    });
     ++steps_;
     ++counters_.steps;
     // Every pair within sigma_ij was within sigma_ij + skin at the last build unless two
@@ -315,9 +313,8 @@ void DemEngine<D>::steps(std::uint64_t k) {
     if (k == 0) return;
     open_step<false>();
     for (std::uint64_t s = 1; s < k; ++s) open_step<true>();
-    parallel_dynamic(
-        threads_, p_.size(), chunk_of(p_.size()),
-        [this](std::size_t, std::size_t, std::size_t i0, std::size_t i1) { kick(i0, i1); });
+    parallel_chunks(threads_, p_.size(),
+                    [this](std::size_t, std::size_t i0, std::size_t i1) { kick(i0, i1); });
 }
 
 template <int D>
@@ -410,8 +407,8 @@ void DemEngine<D>::kick(std::size_t i0, std::size_t i1) {
     }
 }
 
-// The touched entries of every chunk, in increasing entry order (the chunks are consecutive
-// ranges), added as the single-threaded loop adds them. Each thread reads them all
+// The touched entries of every thread, in increasing entry order (the threads' shares are
+// consecutive ranges), added as the single-threaded loop adds them. Each thread reads them all
 // and adds only into its own range of particles: every particle still receives its contacts in
 // entry order, so the sums are the same bits for any split.
 template <int D>
@@ -455,33 +452,31 @@ void DemEngine<D>::sum_pair_forces() {
     const AngVec<D>* ptj = pair_torque_j_.data();
     Vec<D>* f = f_.data();
     AngVec<D>* tau = tau_.data();
-    const std::size_t n = p_.size();
-    parallel_dynamic(
-        threads_, n, chunk_of(n), [&](std::size_t, std::size_t, std::size_t x0, std::size_t x1) {
-            for (std::size_t x = x0; x < x1; ++x) {
-                // As partner j (entries of lower-index owners: earlier rows, so first), then as
-                // owner i (its own row).
-                Vec<D> fx = f[x];
-                for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
-                    const std::uint32_t k = by_partner[q];
-                    if (touching[k]) fx -= pf[k];
-                }
-                for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
-                    if (touching[k]) fx += pf[k];
-                }
-                f[x] = fx;
-                if (!rot) continue;
-                AngVec<D> tx = tau[x];
-                for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
-                    const std::uint32_t k = by_partner[q];
-                    if (touching[k]) tx += ptj[k];
-                }
-                for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
-                    if (touching[k]) tx += pti[k];
-                }
-                tau[x] = tx;
+    parallel_chunks(threads_, p_.size(), [&](std::size_t, std::size_t x0, std::size_t x1) {
+        for (std::size_t x = x0; x < x1; ++x) {
+            // As partner j (entries of lower-index owners: earlier rows, so first), then as
+            // owner i (its own row).
+            Vec<D> fx = f[x];
+            for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
+                const std::uint32_t k = by_partner[q];
+                if (touching[k]) fx -= pf[k];
             }
-        });
+            for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
+                if (touching[k]) fx += pf[k];
+            }
+            f[x] = fx;
+            if (!rot) continue;
+            AngVec<D> tx = tau[x];
+            for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
+                const std::uint32_t k = by_partner[q];
+                if (touching[k]) tx += ptj[k];
+            }
+            for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
+                if (touching[k]) tx += pti[k];
+            }
+            tau[x] = tx;
+        }
+    });
 }
 
 template <int D>

@@ -293,15 +293,9 @@ class DemEngine {
     int threads_ = 1;
     std::vector<Vec<D>> pair_force_;
     std::vector<AngVec<D>> pair_torque_i_, pair_torque_j_;
-    std::vector<PairTally> tallies_;                    // per thread
-    std::vector<std::vector<std::uint32_t>> touched_;   // per chunk: its entries in contact
-    std::vector<std::vector<WallTouch>> wall_touched_;  // per chunk: its wall contacts
-    // Chunks of a threaded pass over n particles or entries (parallel_dynamic): about 16 per
-    // thread, so a thread the machine slows hands over chunks instead of holding the other up.
-    std::size_t chunk_of(std::size_t n) const {
-        const std::size_t even = n / (16 * std::size_t(threads_));
-        return even > 512 ? even : 512;
-    }
+    std::vector<PairTally> tallies_;
+    std::vector<std::vector<std::uint32_t>> touched_;   // per thread: its entries in contact
+    std::vector<std::vector<WallTouch>> wall_touched_;  // per thread: its wall contacts
     std::array<Wall, 2 * D> walls_{};
     std::array<double, 2 * D> wall_impulse_{};
     std::array<std::uint64_t, 2 * D> wall_hits_{};

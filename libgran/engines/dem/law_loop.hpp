@@ -49,15 +49,13 @@ void DemEngine<D>::pair_forces(double dt_advance) {
             pair_torque_j_.resize(entries);
         }
         tallies_.assign(std::size_t(threads_), total);
-        const std::size_t grain = chunk_of(entries);
-        touched_.resize(chunk_count(entries, grain));
-        parallel_dynamic(threads_, entries, grain,
-                         [this, dt_advance](std::size_t part, std::size_t chunk, std::size_t k0,
-                                            std::size_t k1) {
-                             touched_[chunk].clear();
-                             pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part],
-                                                      &touched_[chunk]);
-                         });
+        touched_.resize(std::size_t(threads_));
+        parallel_chunks(threads_, entries,
+                        [this, dt_advance](std::size_t part, std::size_t k0, std::size_t k1) {
+                            touched_[part].clear();
+                            pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part],
+                                                     &touched_[part]);
+                        });
         for (const PairTally& t : tallies_) total.add(t);
         // Few contacts (a dilute gas): adding the touched entries in entry order (each thread
         // into its own particles) costs less than each particle visiting all its entries.
@@ -247,25 +245,21 @@ void DemEngine<D>::wall_forces(double dt_advance) {
     if (threads_ <= 1) {
         wall_range<L, Rot>(dt_advance, 0, n, impulse, formed, worst, nullptr);
     } else {
-        const std::size_t grain = chunk_of(n);
-        wall_touched_.resize(chunk_count(n, grain));
+        wall_touched_.resize(std::size_t(threads_));
         std::array<double, kMaxThreads> worst_of{};
         std::array<std::array<std::uint64_t, 2 * D>, kMaxThreads> formed_of{};
-        for (int part = 0; part < threads_; ++part) worst_of[std::size_t(part)] = worst;
-        parallel_dynamic(
-            threads_, n, grain,
-            [&, this](std::size_t part, std::size_t chunk, std::size_t i0, std::size_t i1) {
-                std::array<double, 2 * D> unused{};
-                wall_touched_[chunk].clear();
-                wall_range<L, Rot>(dt_advance, i0, i1, unused, formed_of[part], worst_of[part],
-                                   &wall_touched_[chunk]);
-            });
-        for (std::size_t part = 0; part < std::size_t(threads_); ++part) {
+        parallel_chunks(threads_, n, [&, this](std::size_t part, std::size_t i0, std::size_t i1) {
+            std::array<double, 2 * D> unused{};
+            wall_touched_[part].clear();
+            worst_of[part] = worst;
+            wall_range<L, Rot>(dt_advance, i0, i1, unused, formed_of[part], worst_of[part],
+                               &wall_touched_[part]);
+        });
+        for (std::size_t part = 0; part < wall_touched_.size(); ++part) {
             worst = worst_of[part] > worst ? worst_of[part] : worst;
             for (std::size_t c = 0; c < 2 * D; ++c) formed[c] += formed_of[part][c];
         }
-        // Wall by wall, the touched particles in increasing index (the chunks in order): the
-        // single thread's order.
+        // Wall by wall, the touched particles in increasing index: the single thread's order.
         for (std::size_t c = 0; c < 2 * D; ++c) {
             for (const auto& part : wall_touched_) {
                 for (const WallTouch& t : part) {

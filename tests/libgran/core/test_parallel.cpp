@@ -1,7 +1,6 @@
 // Chunking of threaded loops (libgran/core/parallel.hpp).
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <vector>
@@ -41,32 +40,6 @@ TEST(ParallelChunks, EveryIndexIsVisitedOnceOnAnyThreadCount) {
                         });
         for (int v : visits) ASSERT_EQ(v, 1) << threads << " threads";
         EXPECT_TRUE(part_in_range.load());
-    }
-}
-
-// The handed-out chunks: each index visited once, chunk c exactly [c grain, min(n, (c + 1) grain)),
-// the part numbers below the thread count; one thread gets the whole range as one call.
-TEST(ParallelDynamic, EveryChunkIsRunOnceWithItsOwnBoundsOnAnyThreadCount) {
-    for (int threads : {1, 2, 3}) {
-        for (std::size_t n : {0u, 1u, 511u, 512u, 5000u}) {
-            const std::size_t grain = 512;
-            std::vector<int> visits(n, 0);
-            std::atomic<bool> bounds_right{true}, part_in_range{true};
-            std::atomic<int> calls{0};
-            parallel_dynamic(
-                threads, n, grain,
-                [&](std::size_t part, std::size_t chunk, std::size_t b, std::size_t e) {
-                    ++calls;
-                    if (part >= std::size_t(threads)) part_in_range = false;
-                    if (threads > 1 && (b != chunk * grain || e != std::min(n, b + grain)))
-                        bounds_right = false;
-                    for (std::size_t i = b; i < e; ++i) ++visits[i];
-                });
-            for (int v : visits) ASSERT_EQ(v, 1) << threads << " threads, n " << n;
-            EXPECT_TRUE(bounds_right.load()) << threads << " threads, n " << n;
-            EXPECT_TRUE(part_in_range.load());
-            EXPECT_EQ(calls.load(), threads > 1 ? int(chunk_count(n, grain)) : 1);
-        }
     }
 }
 
