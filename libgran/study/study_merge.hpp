@@ -23,14 +23,13 @@ void merge_study(const Study& st, const std::string& outdir, const RunFiles& fil
                  const std::vector<bool>& have, std::chrono::steady_clock::time_point started,
                  StudyReport& rep);
 
-// An exclusive lock on the merge of one study in OUTDIR (flock(2) on OUTDIR/.<study
-// stem>.merge.lock, kept there), held while a process decides which runs are complete and writes
-// the merged files. Two merges of one study at once are normal on a cluster (the array's merge job
-// and a resubmitted task's both start when their jobs end), and HDF5 truncates a file it creates
-// before it finds the file in use: without the lock the second merge emptied part of the first
-// one's merged file
-// (`make test-cluster` caught it). Waits for the other merge to finish; where the file system has
-// no locks, warns and merges without.
+// An exclusive lock on the merge of one study in OUTDIR: flock(2) on OUTDIR/.<stem>.merge.lock
+// (the study file's stem; the file is kept there), held while a process decides which runs are
+// complete and writes the merged files. Two merges of one study at once are normal on a cluster
+// (the array's merge job and a resubmitted task's both start when their jobs end), and HDF5
+// truncates a file it creates before it finds the file in use: without the lock the second merge
+// emptied part of the first one's merged file (`make test-cluster` caught it). Waits for the
+// other merge to finish; where the file system has no locks, warns and merges without.
 class StudyMergeLock {
   public:
     StudyMergeLock(const Study& st, const std::string& outdir);
