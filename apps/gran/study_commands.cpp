@@ -74,7 +74,7 @@ int cmd_study(const StudyCommand& c) {
         opt.forecast = c.forecast;
         opt.merge_only = c.merge_only;
         opt.interrupt = &g_interrupt;
-        const std::string outdir = c.out.empty() ? st.output_dir : c.out;
+        const std::string outdir = gran::study_output_dir(st, opt);
         if (c.status) {
             std::cout << gran::study_status(st, outdir);
             return 0;

@@ -190,8 +190,7 @@ int run_study_mpi(const Study& st, const StudyOptions& opt) {
         code = rep.interrupted ? 3 : rep.failed > 0 ? 1 : 0;
     } else {
         // The folders exist once rank 0 hands out the first run.
-        const std::string outdir = opt.output_dir.empty() ? st.output_dir : opt.output_dir;
-        work(st, opt, run_files(st, outdir));
+        work(st, opt, run_files(st, study_output_dir(st, opt)));
     }
     MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
     MPI_Finalize();

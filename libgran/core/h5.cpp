@@ -1,15 +1,13 @@
 #include "libgran/core/h5.hpp"
 
-#include <fcntl.h>
 #include <hdf5.h>
-#include <sys/file.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <functional>
 #include <numeric>
 #include <type_traits>
+
+#include "libgran/core/file_lock.hpp"
 
 namespace gran::h5 {
 
@@ -309,11 +307,7 @@ namespace {
 // corrupt (two merges of one study did it: docs/cluster.md). Its lock is probed first instead.
 // Without HDF5's file locking (HDF5_USE_FILE_LOCKING=FALSE) there is nothing to see.
 void refuse_file_in_use(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);  // no file: no writer
-    if (fd < 0) return;
-    const bool in_use = ::flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
-    ::close(fd);  // releases the probe's own lock
-    if (in_use) {
+    if (file_locked_by_another(path)) {
         throw Error("h5: cannot create file '" + path +
                     "': another process has it open (a second run or merge writing the same "
                     "file?); it was left as it is");

@@ -91,6 +91,11 @@ struct StudyOptions {
     bool merge_only = false;
 };
 
+// Where a study writes: StudyOptions::output_dir when given, else the study's own.
+inline std::string study_output_dir(const Study& st, const StudyOptions& opt) {
+    return opt.output_dir.empty() ? st.output_dir : opt.output_dir;
+}
+
 struct StudyReport {
     int ran = 0;
     int reused = 0;

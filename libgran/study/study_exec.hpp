@@ -29,6 +29,10 @@ struct RunRange {
     std::size_t count = std::size_t(-1);
 };
 
+// The runs at a time on this machine: StudyOptions::jobs, else the study's `jobs`, else the
+// cores.
+int study_jobs(const Study& st, const StudyOptions& opt);
+
 // Creates the output folder and finds the reusable results among the runs of `range` (counted
 // in report.reused; the runs outside it are neither checked nor to do).
 StudyPlan plan_study(const Study& st, const StudyOptions& opt, RunRange range = {});

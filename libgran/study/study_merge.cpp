@@ -1,15 +1,10 @@
 #include "libgran/study/study_merge.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
-#include <sys/file.h>
-#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -304,32 +299,25 @@ void merge_study(const Study& st, const std::string& outdir, const RunFiles& fil
     if (!a.fits.empty()) write_fit_report(outdir, stem, a.fits);
 }
 
-StudyMergeLock::StudyMergeLock(const Study& st, const std::string& outdir) {
+namespace {
+
+std::string merge_lock_path(const Study& st, const std::string& outdir) {
     fs::create_directories(outdir);
     const std::string stem = fs::path(st.file).stem().string();
-    const std::string path = (fs::path(outdir) / ("." + stem + ".merge.lock")).string();
-    // Close-on-exec: the runs a study starts must not hold its lock.
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) {
-        spdlog::warn("study: cannot open the merge lock {} ({}); merging without it", path,
-                     std::strerror(errno));
-        return;
-    }
-    if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
-    if (errno == EWOULDBLOCK) {
-        spdlog::info("study: another merge of {} is writing in {}; waiting for it", st.file,
-                     outdir);
-        int rc = 0;
-        while ((rc = ::flock(fd_, LOCK_EX)) != 0 && errno == EINTR) {
-        }
-        if (rc == 0) return;
-    }
-    spdlog::warn("study: cannot lock {} ({}); merging without the lock", path,
-                 std::strerror(errno));
+    return (fs::path(outdir) / ("." + stem + ".merge.lock")).string();
 }
 
-StudyMergeLock::~StudyMergeLock() {
-    if (fd_ >= 0) ::close(fd_);  // releases the lock
+}  // namespace
+
+StudyMergeLock::StudyMergeLock(const Study& st, const std::string& outdir)
+    : lock_(merge_lock_path(st, outdir), [&] {
+          spdlog::info("study: another merge of {} is writing in {}; waiting for it", st.file,
+                       outdir);
+      }) {
+    if (!lock_.held()) {
+        spdlog::warn("study: cannot lock the merge of {} in {} ({}); merging without the lock",
+                     st.file, outdir, lock_.error());
+    }
 }
 
 }  // namespace gran

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "libgran/core/file_lock.hpp"
 #include "libgran/study/study.hpp"
 
 namespace gran {
@@ -33,12 +34,9 @@ void merge_study(const Study& st, const std::string& outdir, const RunFiles& fil
 class StudyMergeLock {
   public:
     StudyMergeLock(const Study& st, const std::string& outdir);
-    ~StudyMergeLock();
-    StudyMergeLock(const StudyMergeLock&) = delete;
-    StudyMergeLock& operator=(const StudyMergeLock&) = delete;
 
   private:
-    int fd_ = -1;
+    ExclusiveFileLock lock_;
 };
 
 }  // namespace gran

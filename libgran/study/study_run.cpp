@@ -278,12 +278,16 @@ int exit_code_of(int status) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+int study_jobs(const Study& st, const StudyOptions& opt) {
+    return opt.jobs > 0  ? opt.jobs
+           : st.jobs > 0 ? st.jobs
+                         : int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 StudyPlan plan_study(const Study& st, const StudyOptions& opt, RunRange range) {
     StudyPlan p;
-    p.outdir = opt.output_dir.empty() ? st.output_dir : opt.output_dir;
-    p.jobs = opt.jobs > 0  ? opt.jobs
-             : st.jobs > 0 ? st.jobs
-                           : int(std::max(1u, std::thread::hardware_concurrency()));
+    p.outdir = study_output_dir(st, opt);
+    p.jobs = study_jobs(st, opt);
     fs::create_directories(fs::path(p.outdir) / "logs");
     p.files = run_files(st, p.outdir);
     p.have.assign(st.runs.size(), false);
@@ -317,7 +321,7 @@ namespace {
 // `--merge-only` (a SLURM merge job): the complete runs are found under the merge lock, so of two
 // merges of one study the one that writes last has seen every run that ended before it started.
 StudyReport merge_complete_runs(const Study& st, const StudyOptions& opt) {
-    const StudyMergeLock lock(st, opt.output_dir.empty() ? st.output_dir : opt.output_dir);
+    const StudyMergeLock lock(st, study_output_dir(st, opt));
     StudyPlan plan = plan_study(st, opt);
     spdlog::info("study {}: merging the {} complete runs of {}", st.file, plan.report.reused,
                  st.runs.size());
@@ -328,13 +332,7 @@ StudyReport merge_complete_runs(const Study& st, const StudyOptions& opt) {
 }  // namespace
 
 StudyReport run_study(const Study& st, const StudyOptions& opt) {
-    if (opt.forecast) {
-        const std::string outdir = opt.output_dir.empty() ? st.output_dir : opt.output_dir;
-        const int jobs = opt.jobs > 0  ? opt.jobs
-                         : st.jobs > 0 ? st.jobs
-                                       : int(std::max(1u, std::thread::hardware_concurrency()));
-        return run_pilots(st, opt, outdir, jobs);
-    }
+    if (opt.forecast) return run_pilots(st, opt, study_output_dir(st, opt), study_jobs(st, opt));
     if (opt.merge_only) return merge_complete_runs(st, opt);
     StudyPlan plan = plan_study(st, opt);
     spdlog::info("study {}: {} runs, {} already complete, {} to run on {} cores; results in {}",
