@@ -5,49 +5,42 @@
 
 #include <atomic>
 #include <chrono>
-#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <thread>
 
 #include "libgran/core/file_lock.hpp"
+#include "tests/support/temp_dir_test.hpp"
 
 namespace gran {
 namespace {
 
-namespace fs = std::filesystem;
+class FileLock : public gran::testing::TempDirTest {
+  protected:
+    FileLock() : TempDirTest("gran_file_lock") {}
+};
 
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("gran_file_lock_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-TEST(FileLock, AFileIsSeenLockedOnlyWhileAnotherHolderHasIt) {
-    const fs::path dir = fresh_dir("probe");
-    const std::string path = (dir / "result.h5").string();
-    EXPECT_FALSE(file_locked_by_another(path)) << "no file: no writer";
-    std::ofstream(path) << "data";
-    EXPECT_FALSE(file_locked_by_another(path));
+TEST_F(FileLock, AFileIsSeenLockedOnlyWhileAnotherHolderHasIt) {
+    const std::string file = path("result.h5");
+    EXPECT_FALSE(file_locked_by_another(file)) << "no file: no writer";
+    std::ofstream(file) << "data";
+    EXPECT_FALSE(file_locked_by_another(file));
     {
-        const ExclusiveFileLock held(path);
+        const ExclusiveFileLock held(file);
         ASSERT_EQ(held.outcome(), ExclusiveFileLock::Outcome::Held);
-        EXPECT_TRUE(file_locked_by_another(path));
+        EXPECT_TRUE(file_locked_by_another(file));
     }
-    EXPECT_FALSE(file_locked_by_another(path)) << "the lock is released with its holder";
-    std::ifstream in(path);
+    EXPECT_FALSE(file_locked_by_another(file)) << "the lock is released with its holder";
+    std::ifstream in(file);
     std::string text;
     in >> text;
     EXPECT_EQ(text, "data") << "neither the probe nor the lock changes the file";
-    fs::remove_all(dir);
 }
 
-TEST(FileLock, ASecondLockWaitsForTheFirstHolderAndThenHoldsTheFile) {
-    const fs::path dir = fresh_dir("wait");
-    const std::string path = (dir / ".study.merge.lock").string();
+TEST_F(FileLock, ASecondLockWaitsForTheFirstHolderAndThenHoldsTheFile) {
+    const std::string file = path(".study.merge.lock");
     std::atomic<bool> waiting{false}, released{false};
-    auto first = std::make_unique<ExclusiveFileLock>(path);
+    auto first = std::make_unique<ExclusiveFileLock>(file);
     ASSERT_TRUE(first->held());
     std::thread holder([&] {
         // (Bounded: a second lock that does not wait must fail the test, not hang it.)
@@ -57,21 +50,18 @@ TEST(FileLock, ASecondLockWaitsForTheFirstHolderAndThenHoldsTheFile) {
         released = true;
         first.reset();
     });
-    const ExclusiveFileLock second(path, [&] { waiting = true; });
+    const ExclusiveFileLock second(file, [&] { waiting = true; });
     holder.join();
     EXPECT_EQ(second.outcome(), ExclusiveFileLock::Outcome::HeldAfterWait);
     EXPECT_TRUE(released.load()) << "the second lock was granted before the first was released";
-    EXPECT_TRUE(file_locked_by_another(path));
-    fs::remove_all(dir);
+    EXPECT_TRUE(file_locked_by_another(file));
 }
 
-TEST(FileLock, ALockInAFolderThatDoesNotExistIsNotHeldAndSaysWhy) {
-    const fs::path dir = fresh_dir("missing");
-    const ExclusiveFileLock lock((dir / "no" / "such" / "folder.lock").string());
+TEST_F(FileLock, ALockInAFolderThatDoesNotExistIsNotHeldAndSaysWhy) {
+    const ExclusiveFileLock lock(path("no/such/folder.lock"));
     EXPECT_FALSE(lock.held());
     EXPECT_EQ(lock.outcome(), ExclusiveFileLock::Outcome::Unavailable);
     EXPECT_NE(lock.error().find("No such file"), std::string::npos) << lock.error();
-    fs::remove_all(dir);
 }
 
 }  // namespace
