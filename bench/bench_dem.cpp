@@ -6,7 +6,7 @@
 // plain timers. Units m = d = g = 1.
 //
 //   gran_bench_dem [--sizes 100,1600,10000] [--warmup-periods P] [--particle-steps X] [--W W]
-//                  [--threads T] [--sort-interval S] [--csv PATH]
+//                  [--threads T] [--sort-interval S] [--stages] [--csv PATH]
 //
 // --csv appends one row per size to PATH in the columns of gran_bench's results/bench.csv
 // (case,engine,dimension,N,packing_fraction,rate,unit; rate in particle-steps per CPU second),
@@ -19,6 +19,11 @@
 // --sort-interval S renumbers the grains in space every S steps whatever N (0: never;
 // DemSettings::sort_interval); without it the engine's defaults (every 1000 steps from 8192
 // grains on). The state hash is over storage order, so it differs between sort settings.
+//
+// --stages times the stages of each step (DemEngine::time_stages) and prints, after each size's
+// row, their wall-clock nanoseconds per particle-step: the half kicks and the drift, the
+// neighbour list (rebuild test, builds, sorts), the grain-grain and the grain-wall contacts, and
+// the rest of the timed loop (the clock reads themselves, about five per step, among it).
 //
 // --W 0 keeps the floor static: the bed settles during the warm-up (periods of the W = 9 drive)
 // and the timed part measures a dense bed at rest (about 6 contacts per grain) instead of the
@@ -62,6 +67,7 @@ struct Options {
     double W = 9;  // (A omega)^2 / (d g); 0: static floor
     int threads = 1;
     std::int64_t sort_interval = -1;  // -1: the engine's default
+    bool stages = false;
     std::string csv;
 };
 
@@ -85,13 +91,15 @@ Options parse(int argc, char** argv) {
             o.threads = std::stoi(argv[++i]);
         } else if (a == "--sort-interval" && has_value) {
             o.sort_interval = std::stoll(argv[++i]);
+        } else if (a == "--stages") {
+            o.stages = true;
         } else if (a == "--csv" && has_value) {
             o.csv = argv[++i];
         } else {
             std::fprintf(stderr,
                          "usage: %s [--sizes 100,1600,10000] [--warmup-periods P] "
                          "[--particle-steps X] [--W W] [--threads T] [--sort-interval S] "
-                         "[--csv PATH]\n",
+                         "[--stages] [--csv PATH]\n",
                          argv[0]);
             std::exit(2);
         }
@@ -119,6 +127,16 @@ std::uint64_t state_hash(const Particles<3>& ps) {
     return h;
 }
 
+// The stages' wall-clock nanoseconds per particle-step, and the share of the timed loop.
+void print_stages(const DemStageTimes& t, double wall, double psteps) {
+    const double ns = 1e9 / psteps;
+    std::printf(
+        "# stages, ns per particle-step: kicks+drift %.2f, list %.2f, pairs %.2f, walls %.2f, "
+        "rest %.2f (of %.2f)\n",
+        t.kicks_and_drift * ns, t.neighbour_list * ns, t.pair_contacts * ns, t.wall_contacts * ns,
+        (wall - t.total()) * ns, wall * ns);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -137,6 +155,7 @@ int main(int argc, char** argv) {
         const auto steps =
             static_cast<std::uint64_t>(std::max(1000.0, std::ceil(opt.particle_steps / double(n))));
         const DemCounters before = e.counters();
+        e.time_stages(opt.stages);
         const double c0 = cpu_seconds(), w0 = wall_seconds();
         e.steps(steps);  // fused, as advance() steps
         const std::uint64_t contact_sum =
@@ -152,6 +171,7 @@ int main(int argc, char** argv) {
                     double(e.counters().rebuilds - before.rebuilds) / double(steps),
                     2.0 * double(contact_sum) / (double(steps) * double(n)), tz,
                     e.counters().max_overlap, static_cast<unsigned long long>(state_hash(ps)));
+        if (opt.stages) print_stages(e.stage_times(), wall, psteps);
         std::fflush(stdout);
         if (!opt.csv.empty()) {
             const bool fresh = !std::ifstream(opt.csv).good();

@@ -292,14 +292,17 @@ void DemEngine<D>::open_step() {
     const std::size_t n = p_.size();
     // Largest displacement since the last build, per thread (a maximum: the same for any split).
     std::array<double, kMaxThreads> moved2{};
+    stage_clock_.start();
     parallel_chunks(threads_, n, [this, &moved2](std::size_t part, std::size_t i0, std::size_t i1) {
         moved2[part] = kick_drift<ClosingKick>(i0, i1);
     });
+    stage_clock_.lap(stage_times_.kicks_and_drift);
     ++steps_;
     ++counters_.steps;
     // Every pair within sigma_ij was within sigma_ij + skin at the last build unless two
     // particles moved by more than skin / 2 each.
     if (*std::max_element(moved2.begin(), moved2.end()) > 0.25 * skin_ * skin_) rebuild();
+    stage_clock_.lap(stage_times_.neighbour_list);
     accumulate_forces(dt_);  // 3. forces at t + dt (f_, tau_ were zeroed by kick_drift)
 }
 
@@ -313,8 +316,10 @@ void DemEngine<D>::steps(std::uint64_t k) {
     if (k == 0) return;
     open_step<false>();
     for (std::uint64_t s = 1; s < k; ++s) open_step<true>();
+    stage_clock_.start();
     parallel_chunks(threads_, p_.size(),
                     [this](std::size_t, std::size_t i0, std::size_t i1) { kick(i0, i1); });
+    stage_clock_.lap(stage_times_.kicks_and_drift);
 }
 
 template <int D>
@@ -505,6 +510,7 @@ template <int D>
 void DemEngine<D>::compute_forces(double dt_advance) {
     std::fill(f_.begin(), f_.end(), Vec<D>::Zero());
     std::fill(tau_.begin(), tau_.end(), ang_zero<D>());
+    stage_clock_.start();  // outside a step: the forces' laps start here
     accumulate_forces(dt_advance);
 }
 

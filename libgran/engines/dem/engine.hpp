@@ -37,6 +37,7 @@
 #include "libgran/core/box.hpp"
 #include "libgran/core/particles.hpp"
 #include "libgran/core/species.hpp"
+#include "libgran/core/stage_clock.hpp"
 #include "libgran/core/wall_motion.hpp"
 #include "libgran/engines/dem/contact_force.hpp"
 #include "libgran/engines/dem/neighbour_list.hpp"
@@ -74,6 +75,18 @@ struct DemCounters {
     std::uint64_t rebuilds = 0;              // neighbour-list builds
     std::uint64_t sorts = 0;                 // spatial sorts (DemSettings::sort_interval)
     double max_overlap = 0;  // largest delta / sigma_ij seen (a wall: delta / sigma_i)
+};
+
+// Wall-clock seconds of the stages of the steps since DemEngine::time_stages(true). A threaded
+// stage includes its threads' waits for each other.
+struct DemStageTimes {
+    double kicks_and_drift = 0;  // the half kicks, the drift and the displacement tally
+    double neighbour_list = 0;   // the rebuild test, the list builds and the spatial sorts
+    double pair_contacts = 0;    // grain-grain contact forces (with their threaded sums)
+    double wall_contacts = 0;    // grain-wall contact forces (with finding the wall candidates)
+    double total() const {
+        return kicks_and_drift + neighbour_list + pair_contacts + wall_contacts;
+    }
 };
 
 struct DemEnergies {
@@ -139,6 +152,13 @@ class DemEngine {
     const Box<D>& box() const { return box_; }
     const Vec<D>& gravity() const { return g_; }
     const DemCounters& counters() const { return counters_; }
+    // Times the stages of the following steps (a clock read per stage and step), from zero;
+    // false stops timing and keeps the times. No bit of the run changes.
+    void time_stages(bool on) {
+        stage_clock_.enable(on);
+        if (on) stage_times_ = DemStageTimes{};
+    }
+    const DemStageTimes& stage_times() const { return stage_times_; }
     const ContactTable& contacts() const { return contacts_; }
     std::size_t species_count() const { return mass_.size(); }
     double species_mass(std::uint32_t s) const { return mass_[s]; }
@@ -263,6 +283,8 @@ class DemEngine {
     Particles<D> p_;
     DemSettings settings_;
     DemCounters counters_;
+    StageClock stage_clock_;
+    DemStageTimes stage_times_;
     Vec<D> g_ = Vec<D>::Zero();
     double dt_ = 0;
     double t_start_ = 0;

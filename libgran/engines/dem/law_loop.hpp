@@ -20,10 +20,14 @@ template <class L>
 void DemEngine<D>::accumulate_forces_with(double dt_advance) {
     if (p_.rotating()) {
         pair_forces<L, true>(dt_advance);
+        stage_clock_.lap(stage_times_.pair_contacts);
         wall_forces<L, true>(dt_advance);
+        stage_clock_.lap(stage_times_.wall_contacts);
     } else {
         pair_forces<L, false>(dt_advance);
+        stage_clock_.lap(stage_times_.pair_contacts);
         wall_forces<L, false>(dt_advance);
+        stage_clock_.lap(stage_times_.wall_contacts);
     }
 }
 

@@ -1,0 +1,87 @@
+// The DEM engine's stage clock (DemEngine::time_stages, libgran/core/stage_clock.hpp): every
+// stage of a step timed, nothing outside the steps counted, and no bit of the run changed.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "libgran/engines/dem/engine.hpp"
+#include "tests/support/dem_beds.hpp"
+
+namespace gran {
+namespace {
+
+using testing::Bed;
+using testing::bed_engine;
+using testing::dense_bed;
+using testing::expect_same_state;
+
+double wall_seconds_of(const auto& work) {
+    const auto t0 = std::chrono::steady_clock::now();
+    work();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+TEST(DemStageTimes, StayZeroUntilTimingIsSwitchedOn) {
+    DemEngine<3> e = bed_engine<3>(dense_bed<3>(600), 1);
+    e.steps(50);
+    EXPECT_EQ(e.stage_times().total(), 0.0);
+    EXPECT_EQ(e.stage_times().kicks_and_drift, 0.0);
+}
+
+// The dense bed rebuilds its list, touches its floor and has many contacts: every stage has work.
+TEST(DemStageTimes, EveryStageOfABedIsTimedAndTheStagesMakeUpTheStepsWallTime) {
+    for (int threads : {1, 2}) {
+        DemEngine<3> e = bed_engine<3>(dense_bed<3>(2000), threads);
+        e.time_stages(true);
+        const std::uint64_t rebuilds = e.counters().rebuilds;
+        const double wall = wall_seconds_of([&] { e.steps(300); });
+        ASSERT_GT(e.counters().rebuilds, rebuilds) << "the comparison needs list builds";
+        const DemStageTimes& t = e.stage_times();
+        EXPECT_GT(t.kicks_and_drift, 0) << threads << " threads";
+        EXPECT_GT(t.neighbour_list, 0) << threads << " threads";
+        EXPECT_GT(t.pair_contacts, 0) << threads << " threads";
+        EXPECT_GT(t.wall_contacts, 0) << threads << " threads";
+        // Between the laps there are only counter updates: the stages are nearly all of it.
+        EXPECT_LE(t.total(), wall) << threads << " threads";
+        EXPECT_GT(t.total(), 0.8 * wall) << threads << " threads";
+    }
+}
+
+// A pause between steps, and forces re-evaluated after it (set_wall): neither the pause nor any
+// time before the re-evaluation is counted as a stage.
+TEST(DemStageTimes, TimeBetweenStepsIsNotCounted) {
+    DemEngine<3> e = bed_engine<3>(dense_bed<3>(600), 1);
+    e.time_stages(true);
+    const double first = wall_seconds_of([&] { e.steps(20); });
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    const double second = wall_seconds_of([&] {
+        e.set_wall(2, 0, WallMotion::sinusoid(0.2, 10.0), 0);  // re-evaluates the forces
+        e.steps(20);
+    });
+    EXPECT_LE(e.stage_times().total(), first + second);
+    // Switched off: the times are kept and no longer grow.
+    e.time_stages(false);
+    const double kept = e.stage_times().total();
+    EXPECT_GT(kept, 0);
+    e.steps(20);
+    EXPECT_EQ(e.stage_times().total(), kept);
+}
+
+TEST(DemStageTimes, TimingChangesNoBitOfTheRun) {
+    const Bed<3> bed = dense_bed<3>(2000);
+    DemEngine<3> plain = bed_engine<3>(bed, 1);
+    DemEngine<3> timed = bed_engine<3>(bed, 1);
+    DemEngine<3> timed_two = bed_engine<3>(bed, 2);
+    timed.time_stages(true);
+    timed_two.time_stages(true);
+    plain.steps(200);
+    timed.steps(200);
+    timed_two.steps(200);
+    EXPECT_GT(timed.stage_times().total(), 0);
+    expect_same_state(plain, timed, "timed");
+    expect_same_state(plain, timed_two, "timed, 2 threads");
+}
+
+}  // namespace
+}  // namespace gran
