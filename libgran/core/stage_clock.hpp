@@ -4,8 +4,8 @@
 // against the microseconds of a DEM step from a hundred grains up).
 //
 // Why not a sampling profiler: perf's cpu-clock samples (the only ones on a machine without
-// hardware counters) put 72% of a vibrated bed's step in the drift where the clocks measure 62%
-// (docs/performance.md, "Where a DEM step's time goes").
+// hardware counters) put 72% of a vibrated bed's step at N = 10^4 in the drift, where these
+// clocks measure 57-58% (docs/performance.md, "Measured with clocks").
 #include <chrono>
 
 namespace gran {
