@@ -239,14 +239,10 @@ class DemEngine {
     void pair_forces(double dt_advance);
     template <class L, bool Rot>
     void wall_forces(double dt_advance);
-    struct WallTouch {  // a wall contact of a threaded step: its normal force, for the impulse
-        double f_n;
-        std::uint32_t particle, wall;
-    };
     template <class L, bool Rot>
-    void wall_range(double dt_advance, std::size_t i0, std::size_t i1,
-                    std::array<double, 2 * D>& impulse, std::array<std::uint64_t, 2 * D>& formed,
-                    double& worst, std::vector<WallTouch>* touched);
+    void wall_range(double dt_advance, std::size_t c, std::size_t k0, std::size_t k1,
+                    double& impulse, std::uint64_t& formed, double& worst,
+                    std::vector<double>* touched);
     // Contacts counted by one thread's share of the entries.
     struct PairTally {
         std::uint64_t formed = 0, active = 0;
@@ -316,8 +312,8 @@ class DemEngine {
     std::vector<Vec<D>> pair_force_;
     std::vector<AngVec<D>> pair_torque_i_, pair_torque_j_;
     std::vector<PairTally> tallies_;
-    std::vector<std::vector<std::uint32_t>> touched_;   // per thread: its entries in contact
-    std::vector<std::vector<WallTouch>> wall_touched_;  // per thread: its wall contacts
+    std::vector<std::vector<std::uint32_t>> touched_;  // per thread: its entries in contact
+    std::vector<std::vector<double>> wall_touched_;  // per thread: its wall contacts' normal forces
     std::array<Wall, 2 * D> walls_{};
     std::array<double, 2 * D> wall_impulse_{};
     std::array<std::uint64_t, 2 * D> wall_hits_{};

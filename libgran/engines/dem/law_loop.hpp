@@ -235,143 +235,134 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
 
 // Plane walls: the particle against an infinite mass (m_eff = m_i, lever arm 0 on the wall side)
 // moving along its normal with velocity u(t): v_j = u n_axis in the relative velocity (A3).
-// Each particle's wall forces are added wall by wall, so a split of the particles between
-// threads changes no bit of them; the normal forces that make each wall's impulse are summed
-// afterwards in particle order (one thread: as they come).
+// Wall by wall, so each particle's wall forces are added in wall order; several threads split a
+// wall's candidates (wall_candidates_, in increasing index) into consecutive shares, which
+// changes no bit of any particle's force. The normal forces that make the wall's impulse are
+// summed afterwards in candidate order (one thread: as they come). Splitting the candidates,
+// not the particles: after the spatial sort the grains near the floor all have low indices, and
+// a split by index gave one thread the whole floor.
 template <int D>
 template <class L, bool Rot>
 void DemEngine<D>::wall_forces(double dt_advance) {
-    const std::size_t n = p_.size();
     double worst = counters_.max_overlap;
-    std::array<double, 2 * D> impulse{};
-    std::array<std::uint64_t, 2 * D> formed{};
     if (wall_candidates_stale_) find_wall_candidates();
-    if (threads_ <= 1) {
-        wall_range<L, Rot>(dt_advance, 0, n, impulse, formed, worst, nullptr);
-    } else {
-        wall_touched_.resize(std::size_t(threads_));
-        std::array<double, kMaxThreads> worst_of{};
-        std::array<std::array<std::uint64_t, 2 * D>, kMaxThreads> formed_of{};
-        parallel_chunks(threads_, n, [&, this](std::size_t part, std::size_t i0, std::size_t i1) {
-            std::array<double, 2 * D> unused{};
-            wall_touched_[part].clear();
-            worst_of[part] = worst;
-            wall_range<L, Rot>(dt_advance, i0, i1, unused, formed_of[part], worst_of[part],
-                               &wall_touched_[part]);
-        });
-        for (std::size_t part = 0; part < wall_touched_.size(); ++part) {
-            worst = worst_of[part] > worst ? worst_of[part] : worst;
-            for (std::size_t c = 0; c < 2 * D; ++c) formed[c] += formed_of[part][c];
-        }
-        // Wall by wall, the touched particles in increasing index: the single thread's order.
-        for (std::size_t c = 0; c < 2 * D; ++c) {
-            for (const auto& part : wall_touched_) {
-                for (const WallTouch& t : part) {
-                    if (t.wall == c) impulse[c] += t.f_n;
-                }
-            }
-        }
-    }
     for (std::size_t c = 0; c < 2 * D; ++c) {
         if (!walls_[c].present) continue;
-        wall_impulse_[c] += impulse[c] * dt_advance;
-        wall_hits_[c] += formed[c];
-        counters_.wall_contacts += formed[c];
+        double impulse = 0;
+        std::uint64_t formed = 0;
+        const std::size_t m = wall_candidates_[c].size();
+        if (threads_ <= 1) {
+            wall_range<L, Rot>(dt_advance, c, 0, m, impulse, formed, worst, nullptr);
+        } else {
+            wall_touched_.resize(std::size_t(threads_));
+            std::array<double, kMaxThreads> worst_of{};
+            std::array<std::uint64_t, kMaxThreads> formed_of{};
+            parallel_chunks(threads_, m,
+                            [&, this](std::size_t part, std::size_t k0, std::size_t k1) {
+                                double unused = 0;
+                                wall_touched_[part].clear();
+                                worst_of[part] = worst;
+                                wall_range<L, Rot>(dt_advance, c, k0, k1, unused, formed_of[part],
+                                                   worst_of[part], &wall_touched_[part]);
+                            });
+            for (std::size_t part = 0; part < wall_touched_.size(); ++part) {
+                worst = worst_of[part] > worst ? worst_of[part] : worst;
+                formed += formed_of[part];
+                for (const double f_n : wall_touched_[part]) impulse += f_n;  // candidate order
+            }
+        }
+        wall_impulse_[c] += impulse * dt_advance;
+        wall_hits_[c] += formed;
+        counters_.wall_contacts += formed;
     }
     counters_.max_overlap = worst;
 }
 
-// The wall contacts of particles [i0, i1) (those of them that can reach the wall,
-// wall_candidates_): forces and torques added to f_, tau_; normal forces
-// summed into `impulse` (touched null) or appended to `touched`; contacts formed and the largest
-// relative overlap into `formed` and `worst`.
+// The contacts with wall c of its candidates [k0, k1) (wall_candidates_[c]): forces and torques
+// added to f_, tau_; normal forces summed into `impulse` (touched null) or appended to `touched`;
+// contacts formed and the largest relative overlap into `formed` and `worst`.
 template <int D>
 template <class L, bool Rot>
-void DemEngine<D>::wall_range(double dt_advance, std::size_t i0, std::size_t i1,
-                              std::array<double, 2 * D>& impulse,
-                              std::array<std::uint64_t, 2 * D>& formed, double& worst,
-                              std::vector<WallTouch>* touched) {
+void DemEngine<D>::wall_range(double dt_advance, std::size_t c, std::size_t k0, std::size_t k1,
+                              double& impulse, std::uint64_t& formed, double& worst,
+                              std::vector<double>* touched) {
     constexpr bool kHistory = L::history;
     constexpr std::size_t kWalls = 2 * D;
     const AngVec<D> zero = ang_zero<D>();
     const double t = now();
     double most = worst;
-    std::vector<WallTouch> mine;  // on this thread's stack while it grows (see pair_range)
+    std::vector<double> mine;  // on this thread's stack while it grows (see pair_range)
     if (touched) mine.swap(*touched);
-    for (std::size_t c = 0; c < kWalls; ++c) {
-        const Wall& w = walls_[c];
-        if (!w.present) continue;
-        const typename L::Pair* params =
-            contacts_.template contacts<L>() + contacts_.wall_index(w.partner, 0);  // per species
-        const int a = int(c / 2);
-        const double inward = c % 2 == 0 ? 1.0 : -1.0;
-        const double surface = w.base + w.motion.position(t);
-        Vec<D> nrm = Vec<D>::Zero();
-        nrm[a] = inward;  // into the gas
-        Vec<D> vw = Vec<D>::Zero();
-        vw[a] = w.motion.velocity(t);
-        if (w.slide_axis >= 0) vw[w.slide_axis] = w.slide.velocity(t);
-        double sum = 0;
-        std::uint64_t count = 0;
-        // Raw pointers (the byte stores to the contact flags may alias anything); a flag is
-        // written only when it changes.
-        const std::uint32_t* species = p_.species.data();
-        const double* radius = radius_.data();
-        const Vec<D>* r = p_.r.data();
-        std::uint8_t* touching_of = wall_touching_.data() + c;
-        const std::vector<std::uint32_t>& near = wall_candidates_[c];
-        const auto first = std::lower_bound(near.begin(), near.end(), std::uint32_t(i0));
-        const auto last = std::lower_bound(first, near.end(), std::uint32_t(i1));
-        for (auto it = first; it != last; ++it) {
-            const std::size_t i = *it;
-            const std::uint32_t s = species[i];
-            const double R = radius[s];
-            const double gap = inward * (r[i][a] - surface) - R;
-            std::uint8_t& touching = touching_of[i * kWalls];
-            if (!(gap < 0)) {
-                if (touching) touching = 0;
-                continue;
-            }
-            const double delta = -gap;
-            const bool forms = touching == 0;
-            touching = 1;
-            if (forms) ++count;
-            const typename L::Pair& P = params[s];
-            const double relative = 0.5 * delta / R;
-            most = relative > most ? relative : most;
-            AngVec<D> wpi = zero, whi = zero;
-            if constexpr (Rot) {
-                wpi = w_pred_[i];
-                whi = p_.w[i];
-            }
-            const Vec<D> g = contact_velocity<D>(v_pred_[i], vw, wpi, zero, R, 0.0, nrm);
-            const ContactForce<D> cf = [&] {
-                if constexpr (kHistory) {
-                    Vec<D>& xi = wall_spring_[i * kWalls + c];
-                    if (forms) xi.setZero();
-                    const Vec<D> gh = contact_velocity<D>(p_.v[i], vw, whi, zero, R, 0.0, nrm);
-                    const double closing = -gh.dot(nrm);
-                    double dt_in = dt_advance;
-                    if (forms && closing * dt_in > delta) dt_in = delta / closing;
-                    advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
-                    return L::template force<D>(P, delta, nrm, g, R, 0.0, xi);
-                } else {
-                    (void)whi;
-                    Vec<D> unused;
-                    return L::template force<D>(P, delta, nrm, g, R, 0.0, unused);
-                }
-            }();
-            f_[i] += cf.force;
-            if constexpr (Rot) tau_[i] += cf.torque_i;
-            if (touched) {
-                mine.push_back({cf.f_n, std::uint32_t(i), std::uint32_t(c)});
-            } else {
-                sum += cf.f_n;
-            }
+    const Wall& w = walls_[c];
+    const typename L::Pair* params =
+        contacts_.template contacts<L>() + contacts_.wall_index(w.partner, 0);  // per species
+    const int a = int(c / 2);
+    const double inward = c % 2 == 0 ? 1.0 : -1.0;
+    const double surface = w.base + w.motion.position(t);
+    Vec<D> nrm = Vec<D>::Zero();
+    nrm[a] = inward;  // into the gas
+    Vec<D> vw = Vec<D>::Zero();
+    vw[a] = w.motion.velocity(t);
+    if (w.slide_axis >= 0) vw[w.slide_axis] = w.slide.velocity(t);
+    double sum = 0;
+    std::uint64_t count = 0;
+    // Raw pointers (the byte stores to the contact flags may alias anything); a flag is
+    // written only when it changes.
+    const std::uint32_t* species = p_.species.data();
+    const double* radius = radius_.data();
+    const Vec<D>* r = p_.r.data();
+    std::uint8_t* touching_of = wall_touching_.data() + c;
+    const std::uint32_t* first = wall_candidates_[c].data() + k0;
+    const std::uint32_t* last = wall_candidates_[c].data() + k1;
+    for (auto it = first; it != last; ++it) {
+        const std::size_t i = *it;
+        const std::uint32_t s = species[i];
+        const double R = radius[s];
+        const double gap = inward * (r[i][a] - surface) - R;
+        std::uint8_t& touching = touching_of[i * kWalls];
+        if (!(gap < 0)) {
+            if (touching) touching = 0;
+            continue;
         }
-        impulse[c] += sum;
-        formed[c] += count;
+        const double delta = -gap;
+        const bool forms = touching == 0;
+        touching = 1;
+        if (forms) ++count;
+        const typename L::Pair& P = params[s];
+        const double relative = 0.5 * delta / R;
+        most = relative > most ? relative : most;
+        AngVec<D> wpi = zero, whi = zero;
+        if constexpr (Rot) {
+            wpi = w_pred_[i];
+            whi = p_.w[i];
+        }
+        const Vec<D> g = contact_velocity<D>(v_pred_[i], vw, wpi, zero, R, 0.0, nrm);
+        const ContactForce<D> cf = [&] {
+            if constexpr (kHistory) {
+                Vec<D>& xi = wall_spring_[i * kWalls + c];
+                if (forms) xi.setZero();
+                const Vec<D> gh = contact_velocity<D>(p_.v[i], vw, whi, zero, R, 0.0, nrm);
+                const double closing = -gh.dot(nrm);
+                double dt_in = dt_advance;
+                if (forms && closing * dt_in > delta) dt_in = delta / closing;
+                advance_tangential_spring<D>(xi, nrm, Vec<D>(dt_in * gh));
+                return L::template force<D>(P, delta, nrm, g, R, 0.0, xi);
+            } else {
+                (void)whi;
+                Vec<D> unused;
+                return L::template force<D>(P, delta, nrm, g, R, 0.0, unused);
+            }
+        }();
+        f_[i] += cf.force;
+        if constexpr (Rot) tau_[i] += cf.torque_i;
+        if (touched) {
+            mine.push_back(cf.f_n);
+        } else {
+            sum += cf.f_n;
+        }
     }
+    impulse += sum;
+    formed += count;
     if (touched) touched->swap(mine);
     worst = most;
 }
