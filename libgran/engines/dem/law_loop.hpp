@@ -251,16 +251,23 @@ void DemEngine<D>::wall_forces(double dt_advance) {
         double impulse = 0;
         std::uint64_t formed = 0;
         const std::size_t m = wall_candidates_[c].size();
-        if (threads_ <= 1) {
+        // At least a quarter of min_particles_per_thread candidates per thread: a wall with
+        // fewer (the side walls of a box, the floor of a small bed) is not worth a parallel
+        // region of its own. A quarter, since a wall contact costs several times a grain's
+        // drift: the floor of the settled bed of 10^4 grains (about 2500 contacts) gains
+        // 2.3x from a second thread (docs/performance.md, "The wall pass split").
+        const std::size_t per = std::max<std::size_t>(settings_.min_particles_per_thread / 4, 1);
+        const int wall_threads = int(std::min<std::size_t>(std::size_t(threads_), m / per));
+        if (wall_threads <= 1) {
             wall_range<L, Rot>(dt_advance, c, 0, m, impulse, formed, worst, nullptr);
         } else {
-            wall_touched_.resize(std::size_t(threads_));
+            wall_touched_.resize(std::size_t(wall_threads));
+            for (std::vector<double>& part : wall_touched_) part.clear();  // parts given no thread
             std::array<double, kMaxThreads> worst_of{};
             std::array<std::uint64_t, kMaxThreads> formed_of{};
-            parallel_chunks(threads_, m,
+            parallel_chunks(wall_threads, m,
                             [&, this](std::size_t part, std::size_t k0, std::size_t k1) {
                                 double unused = 0;
-                                wall_touched_[part].clear();
                                 worst_of[part] = worst;
                                 wall_range<L, Rot>(dt_advance, c, k0, k1, unused, formed_of[part],
                                                    worst_of[part], &wall_touched_[part]);

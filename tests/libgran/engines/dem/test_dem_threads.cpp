@@ -101,6 +101,32 @@ TEST(DemThreads, CheckpointOfOneThreadContinuesBitIdenticallyOnTwo) {
     expect_same_state(straight, second, "resumed on 2 threads");
 }
 
+// The floor's candidates split between the threads (DemEngine::wall_forces), which needs at
+// least min_particles_per_thread candidates per thread: a small share here, so that the floor of
+// the 2000-grain bed is split, on two and on three threads.
+TEST(DemThreads, FloorContactsSplitBetweenThreadsGiveTheBitsOfOneThread) {
+    const Bed<3> bed = dense_bed<3>(2000);
+    const auto engine = [&bed](int threads) {
+        DemSettings s;
+        s.threads = threads;
+        s.gravity = {0, 0, -1};
+        s.min_particles_per_thread = 10;
+        DemEngine<3> e(bed.box, bed.table, bed.contacts, bed.particles, s);
+        e.set_wall(2, 0, WallMotion::sinusoid(0.2, 10.0), 0);
+        return e;
+    };
+    DemEngine<3> one = engine(1), two = engine(2), three = engine(3);
+    for (int s = 0; s < 400; ++s) {
+        one.step();
+        two.step();
+        three.step();
+    }
+    // Enough floor contacts that each thread's share had some.
+    EXPECT_GT(one.wall_hits()[4], 60u) << "floor contacts formed";
+    expect_same_state(one, two, "floor split, 2 threads");
+    expect_same_state(one, three, "floor split, 3 threads");
+}
+
 TEST(DemThreads, SmallSystemsUseOneThreadPerMinimumShare) {
     const Bed<3> bed = dense_bed<3>(1000);
     DemSettings s;
