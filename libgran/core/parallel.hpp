@@ -42,4 +42,31 @@ void parallel_chunks(int threads, std::size_t n, Body&& body) {
     body(std::size_t(0), std::size_t(0), n);
 }
 
+// body(part, parts) once per thread of one parallel region of at most `threads` threads (the
+// runtime may grant fewer: `parts` is what it granted, the same for every thread). Phases inside
+// the body are separated by parts_barrier(), which every part must reach equally often. One
+// thread calls body(0, 1) directly.
+template <class Body>
+void parallel_parts(int threads, Body&& body) {
+#ifdef _OPENMP
+    if (threads > 1) {
+#pragma omp parallel num_threads(threads)
+        body(static_cast<std::size_t>(omp_get_thread_num()),
+             static_cast<std::size_t>(omp_get_num_threads()));
+        return;
+    }
+#else
+    (void)threads;
+#endif
+    body(std::size_t(0), std::size_t(1));
+}
+
+// Every part of the enclosing parallel_parts region waits here for the others (and sees their
+// writes). Outside a region, or on one thread, it does nothing.
+inline void parts_barrier() {
+#ifdef _OPENMP
+#pragma omp barrier
+#endif
+}
+
 }  // namespace gran

@@ -207,6 +207,7 @@ void DemEngine<D>::rebuild() {
     list_.build(p_.r, p_.species, threads_, sort ? new_index_.data() : nullptr);
     std::fill(disp_.begin(), disp_.end(), Vec<D>::Zero());
     wall_candidates_stale_ = true;
+    pair_split_stale_ = true;
     ++counters_.rebuilds;
 }
 
@@ -533,6 +534,7 @@ void DemEngine<D>::checkpoint(StateArchive& ar) {
     ar.io(wall_impulse_);
     ar.io(wall_hits_);
     wall_candidates_stale_ = true;  // derived from the state: found again after a restore
+    pair_split_stale_ = true;
 }
 
 template class DemEngine<2>;

@@ -253,13 +253,13 @@ class DemEngine {
             worst = o.worst > worst ? o.worst : worst;
         }
     };
-    template <class L, bool Rot, bool Slots>
-    void pair_range(double dt_advance, std::size_t k0, std::size_t k1, PairTally& tally,
-                    std::vector<std::uint32_t>* touched);
-    // Threaded pair forces, in the serial order: each particle's sum of its per-entry slots
-    // (many contacts), or the touched entries added one after another (few).
-    void sum_pair_forces();
-    void add_touched_pair_forces();
+    template <class L, bool Rot, bool Halo>
+    void pair_range(double dt_advance, std::size_t k0, std::size_t k1, PairTally& tally);
+    // Threaded pair forces (threaded_sums.cpp): the list's rows split between the threads and
+    // the halo grains found, once per list; each halo grain's sum of its per-entry slots in the
+    // serial order, by thread `part` of `parts`.
+    void split_pair_rows();
+    void sum_halo_pair_forces(std::size_t part, std::size_t parts);
     // Step stages over particles [i0, i1): the first half kick and the drift (returns the
     // largest squared displacement since the last build), preceded, with ClosingKick, by the
     // previous step's second half kick; and that second half kick alone.
@@ -306,13 +306,19 @@ class DemEngine {
     bool wall_candidates_stale_ = true;
 
     DemNeighbourList<D> list_;
-    // Threaded steps (threads_ > 1): per-entry contact forces and torques, per-thread tallies.
+    // Threaded steps (threads_ > 1): thread t adds the contacts of rows pair_rows_[t] ..
+    // pair_rows_[t + 1] - 1 of the list. Halo grains (halo_ 1, listed in halo_list_) are partners
+    // of an earlier thread's rows: their contacts go to the per-entry slots, summed after the
+    // rows. Derived from the list, found again after each build or restore.
     static constexpr int kMaxThreads = 256;
     int threads_ = 1;
+    std::vector<std::size_t> pair_rows_;
+    std::vector<std::uint8_t> halo_;
+    std::vector<std::uint32_t> halo_list_;
+    bool pair_split_stale_ = true;
     std::vector<Vec<D>> pair_force_;
     std::vector<AngVec<D>> pair_torque_i_, pair_torque_j_;
     std::vector<PairTally> tallies_;
-    std::vector<std::vector<std::uint32_t>> touched_;  // per thread: its entries in contact
     std::vector<std::vector<double>> wall_touched_;  // per thread: its wall contacts' normal forces
     std::array<Wall, 2 * D> walls_{};
     std::array<double, 2 * D> wall_impulse_{};

@@ -35,17 +35,20 @@ void DemEngine<D>::accumulate_forces_with(double dt_advance) {
 // exactly, so the total momentum changes by round-off only).
 //
 // One thread sums each contact into f_ and tau_ as it goes, entry by entry. Several threads
-// (DemSettings::threads) compute the contacts of their share of the entries into per-entry slots,
-// then each particle sums its slots in the order the single thread adds them (its entries as
-// partner, which come first since partners have the higher index, then its own row): the same
-// additions in the same order, so the forces are the same bits for any thread count.
+// (DemSettings::threads) each take consecutive rows of the list (split_pair_rows) and add their
+// contacts straight into the grains whose every entry lies in their rows, in the same entry
+// order as one thread. The halo grains, partners of an earlier thread's rows, get their
+// contacts in per-entry slots instead, summed after a barrier in the single thread's order
+// (sum_halo_pair_forces). The same additions in the same order: the forces are the same bits
+// for any thread count.
 template <int D>
 template <class L, bool Rot>
 void DemEngine<D>::pair_forces(double dt_advance) {
     PairTally total{0, 0, counters_.max_overlap};
     if (threads_ <= 1) {
-        pair_range<L, Rot, false>(dt_advance, 0, list_.entries(), total, nullptr);
+        pair_range<L, Rot, false>(dt_advance, 0, list_.entries(), total);
     } else {
+        if (pair_split_stale_) split_pair_rows();
         const std::size_t entries = list_.entries();
         pair_force_.resize(entries);
         if constexpr (Rot) {
@@ -53,21 +56,19 @@ void DemEngine<D>::pair_forces(double dt_advance) {
             pair_torque_j_.resize(entries);
         }
         tallies_.assign(std::size_t(threads_), total);
-        touched_.resize(std::size_t(threads_));
-        parallel_chunks(threads_, entries,
-                        [this, dt_advance](std::size_t part, std::size_t k0, std::size_t k1) {
-                            touched_[part].clear();
-                            pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part],
-                                                     &touched_[part]);
-                        });
+        parallel_parts(threads_, [this, dt_advance](std::size_t part, std::size_t parts) {
+            if (parts != std::size_t(threads_)) {  // granted fewer threads than split for
+                if (part == 0)
+                    pair_range<L, Rot, false>(dt_advance, 0, list_.entries(), tallies_[0]);
+                return;
+            }
+            const std::uint32_t* start = list_.start.data();
+            pair_range<L, Rot, true>(dt_advance, start[pair_rows_[part]],
+                                     start[pair_rows_[part + 1]], tallies_[part]);
+            parts_barrier();
+            sum_halo_pair_forces(part, parts);
+        });
         for (const PairTally& t : tallies_) total.add(t);
-        // Few contacts (a dilute gas): adding the touched entries in entry order (each thread
-        // into its own particles) costs less than each particle visiting all its entries.
-        if (4 * total.active < p_.size()) {
-            add_touched_pair_forces();
-        } else {
-            sum_pair_forces();
-        }
     }
     counters_.contacts += total.formed;
     counters_.active_contacts = total.active;
@@ -75,15 +76,15 @@ void DemEngine<D>::pair_forces(double dt_advance) {
     counters_.max_overlap = total.worst;
 }
 
-// The contacts of entries [k0, k1): summed into f_, tau_ (Slots false) or stored in the entries'
-// slots with their entries appended to `touched` (Slots true); the tallies added to `tally`. Raw
+// The contacts of entries [k0, k1): summed into f_, tau_ (Halo false); with Halo, summed into
+// the grains that are not halo grains and stored in the entry's slots if one of its grains is
+// (its forces are then summed by sum_halo_pair_forces); the tallies added to `tally`. Raw
 // pointers in locals throughout (the byte stores to the contact flags may alias anything, which
 // would reload every vector's data pointer per entry). Each entry's contact flag is written (a
 // byte); its force slot only if it touches.
 template <int D>
-template <class L, bool Rot, bool Slots>
-void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1, PairTally& tally,
-                              std::vector<std::uint32_t>* touched) {
+template <class L, bool Rot, bool Halo>
+void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1, PairTally& tally) {
     constexpr bool kHistory = L::history;
     const std::size_t ns = mass_.size();
     const typename L::Pair* params = contacts_.template contacts<L>();
@@ -106,10 +107,7 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
     const std::uint32_t* partner = list_.partner.data();
     std::uint8_t* touching = list_.touching.data();
     Vec<D>* spring = list_.spring.data();
-    // The touched list on this thread's stack while it grows: the threads' lists sit side by
-    // side in touched_, and growing them there made every contact move a shared cache line.
-    std::vector<std::uint32_t> mine;
-    if (touched) mine.swap(*touched);
+    const std::uint8_t* halo = halo_.data();
     const Vec<D>* r = p_.r.data();
     const Vec<D>* v = p_.v.data();
     const Vec<D>* v_pred = v_pred_.data();
@@ -205,12 +203,22 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
                     return L::template force<D>(P, delta, nrm, g, li, lj, unused);
                 }
             }();
-            if constexpr (Slots) {
-                mine.push_back(std::uint32_t(k));
-                slot_force[k] = c.force;
-                if constexpr (Rot) {
-                    slot_torque_i[k] = c.torque_i;
-                    slot_torque_j[k] = c.torque_j;
+            if constexpr (Halo) {
+                const bool halo_i = halo[i] != 0, halo_j = halo[j] != 0;
+                if (!halo_i) {
+                    f[i] += c.force;
+                    if constexpr (Rot) tau[i] += c.torque_i;
+                }
+                if (!halo_j) {
+                    f[j] -= c.force;
+                    if constexpr (Rot) tau[j] += c.torque_j;
+                }
+                if (halo_i || halo_j) {
+                    slot_force[k] = c.force;
+                    if constexpr (Rot) {
+                        slot_torque_i[k] = c.torque_i;
+                        slot_torque_j[k] = c.torque_j;
+                    }
                 }
             } else {
                 f[i] += c.force;
@@ -222,12 +230,10 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
             }
         }
     }
-    (void)f;
-    (void)tau;
+    (void)halo;
     (void)slot_force;
     (void)slot_torque_i;
     (void)slot_torque_j;
-    if (touched) touched->swap(mine);
     tally.formed += formed;
     tally.active += active;
     tally.worst = worst;

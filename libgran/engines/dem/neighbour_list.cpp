@@ -162,8 +162,8 @@ void DemNeighbourList<D>::bin(const std::vector<Vec<D>>& r,
 // whole grid in the order one range would find them.
 template <int D>
 template <bool MinImage>
-void DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
-                                     std::vector<std::uint64_t>& out) const {
+std::uint64_t DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
+                                              std::vector<std::uint64_t>& out) const {
     std::array<bool, D> single{};  // periodic axes of one cell: minimum image per pair
     for (std::size_t a = 0; a < std::size_t(D); ++a) single[a] = periodic_[a] && ncell_[a] == 1;
     const auto wrap = [&](Vec<D>& d) {
@@ -189,6 +189,7 @@ void DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
         const std::uint64_t i = order[a], j = order[b];
         out.push_back(i < j ? (i << 32 | j) : (j << 32 | i));
     };
+    std::uint64_t work = 0;           // pair tests and stencil visits (balance_search)
     std::array<std::int32_t, D> q{};  // coordinates of cell c
     std::size_t rest = c0;
     for (std::size_t a = 0; a < std::size_t(D); ++a) {
@@ -204,6 +205,7 @@ void DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
         }
         const std::uint32_t b0 = cs[c], b1 = cs[c + 1];
         if (b0 == b1) continue;
+        work += kStencil + std::uint64_t(b1 - b0) * (b1 - b0 - 1) / 2;
         for (std::uint32_t a = b0; a < b1; ++a) {
             const Vec<D> xa = xs[a];
             const double* cut = cut2 + ss[a] * ns;
@@ -230,6 +232,7 @@ void DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
             if (!valid) continue;
             const std::uint32_t e0 = cs[nc], e1 = cs[nc + 1];
             if (e0 == e1) continue;
+            work += std::uint64_t(b1 - b0) * (e1 - e0);
             for (std::uint32_t a = b0; a < b1; ++a) {
                 const Vec<D> xa = xs[a] + sh;
                 const double* cut = cut2 + ss[a] * ns;
@@ -241,6 +244,7 @@ void DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
             }
         }
     }
+    return work;
 }
 
 template <int D>
@@ -288,6 +292,44 @@ void DemNeighbourList<D>::build(const std::vector<Vec<D>>& r,
     if (by_partner_on_) index_by_partner();
 }
 
+// The slots each thread searches (search_split_): shares expected to cost about the same. A
+// vibrated bed is dense at the floor and dilute above, so equal numbers of slots (cells in order,
+// the floor first) gave the first of two threads 57% of the search's CPU time at N = 10^5. The
+// work of the last build's shares (pair tests plus stencil visits, counted by find_pairs) is
+// taken as spread evenly over each share's slots (the bed changes little between builds), and
+// the new cuts are where that estimate reaches each thread's equal part. Equal slots at the
+// first build or after a change of size or shares. The pairs found are the same for any split.
+template <int D>
+void DemNeighbourList<D>::balance_search(std::size_t n, std::size_t parts) {
+    std::uint64_t total = 0;
+    for (const std::uint64_t work : search_work_) total += work;
+    const bool known = search_split_.size() == parts + 1 && search_split_[parts] == n &&
+                       search_work_.size() == parts && total > 0;
+    if (!known) {
+        search_split_.resize(parts + 1);
+        for (std::size_t t = 0; t < parts; ++t) {
+            std::size_t end = 0;
+            chunk_bounds(n, t, parts, search_split_[t], end);
+        }
+        search_split_[parts] = n;
+        return;
+    }
+    std::vector<std::size_t>& cut = search_cut_;
+    cut.assign(search_split_.begin(), search_split_.end());
+    std::size_t u = 0;         // the old share holding the next cut
+    std::uint64_t before = 0;  // work of the old shares before u
+    for (std::size_t t = 1; t < parts; ++t) {
+        const double target = double(total) * double(t) / double(parts);
+        while (u + 1 < parts && double(before + search_work_[u]) < target)
+            before += search_work_[u++];
+        const double work = double(search_work_[u]);
+        const double width = double(cut[u + 1] - cut[u]);
+        const double into = work > 0 ? (target - double(before)) / work : 0.5;
+        const auto slot = std::size_t(double(cut[u]) + std::clamp(into, 0.0, 1.0) * width);
+        search_split_[t] = std::clamp(slot, search_split_[t - 1], n);
+    }
+}
+
 // The pairs, then compressed rows by the lower index, on `threads` threads (one: the serial code),
 // entry for entry the same rows for any count. Thread t searches the cells whose particles (slots
 // in cell order) fall in its share of the slots, into its own segment; the segments in thread
@@ -302,17 +344,25 @@ void DemNeighbourList<D>::find_rows(std::size_t n, int threads) {
     row_count_.resize(parts);
     for (std::vector<std::uint64_t>& seg : segments_) seg.clear();
     const std::uint32_t* cs = cell_start_.data();
-    parallel_chunks(threads, n, [&](std::size_t part, std::size_t s0, std::size_t s1) {
+    balance_search(n, parts);
+    search_work_.assign(parts, 0);
+    std::size_t granted = parts;
+    parallel_parts(threads, [&](std::size_t part, std::size_t all) {
+        std::size_t s0 = 0, s1 = 0;
+        if (all == parts) {
+            s0 = search_split_[part];
+            s1 = search_split_[part + 1];
+        } else {
+            chunk_bounds(n, part, all, s0, s1);
+            if (part == 0) granted = all;
+        }
         // The cells whose first slot lies in [s0, s1) (an empty cell finds nothing anywhere).
         const std::size_t c0 = std::size_t(std::lower_bound(cs, cs + cells, s0) - cs);
         const std::size_t c1 =
             s1 == n ? cells : std::size_t(std::lower_bound(cs, cs + cells, s1) - cs);
         std::vector<std::uint64_t>& seg = segments_[part];
-        if (min_image_) {
-            find_pairs<true>(c0, c1, seg);
-        } else {
-            find_pairs<false>(c0, c1, seg);
-        }
+        search_work_[part] =
+            min_image_ ? find_pairs<true>(c0, c1, seg) : find_pairs<false>(c0, c1, seg);
         std::vector<std::uint32_t>& count = row_count_[part];
         count.assign(n, 0u);
         for (std::uint64_t p : seg) ++count[std::size_t(p >> 32)];
@@ -320,6 +370,7 @@ void DemNeighbourList<D>::find_rows(std::size_t n, int threads) {
     for (std::size_t t = 0; t < parts; ++t) {  // also the parts the runtime gave no thread
         if (segments_[t].empty()) row_count_[t].assign(n, 0u);
     }
+    if (granted != parts) search_split_.clear();  // the shares searched were not these
     // Row starts: exclusive prefix sums of the total counts.
     start.resize(n + 1);
     std::uint32_t total = 0;

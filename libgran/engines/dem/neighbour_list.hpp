@@ -54,6 +54,9 @@ class DemNeighbourList {
     }
 
     std::size_t entries() const { return partner.size(); }
+    // Per thread, the work of its share of the last build's search: pair tests and stencil
+    // visits. The next build's shares are cut to even it out (balance_search).
+    const std::vector<std::uint64_t>& search_work() const { return search_work_; }
     std::size_t cells() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
 
     std::vector<std::uint32_t> start;    // n + 1 row offsets
@@ -100,8 +103,9 @@ class DemNeighbourList {
     void grid(const std::vector<Vec<D>>& r);
     void bin(const std::vector<Vec<D>>& r, const std::vector<std::uint32_t>& species);
     template <bool MinImage>
-    void find_pairs(std::size_t c0, std::size_t c1, std::vector<std::uint64_t>& out) const;
+    std::uint64_t find_pairs(std::size_t c0, std::size_t c1, std::vector<std::uint64_t>& out) const;
     void find_rows(std::size_t n, int threads);
+    void balance_search(std::size_t n, std::size_t parts);
 
     void index_by_partner();
 
@@ -132,6 +136,10 @@ class DemNeighbourList {
     // Per thread: its pairs i << 32 | j (i < j) in cell order, and its pairs per row.
     std::vector<std::vector<std::uint64_t>> segments_;
     std::vector<std::vector<std::uint32_t>> row_count_;
+    // Per thread: the first slot it searches (parts + 1 cuts), and its work at the last build,
+    // pair tests and stencil visits (balance_search).
+    std::vector<std::size_t> search_split_, search_cut_;
+    std::vector<std::uint64_t> search_work_;
     std::vector<std::uint32_t> fill_;  // index_by_partner(): next free slot per partner
 };
 

@@ -1,45 +1,56 @@
-// The DEM engine's threaded pair forces summed into the grains in the order the single-threaded
-// loop adds them (DemSettings::threads): the bits of one thread for any thread count.
+// The DEM engine's pair forces on several threads (DemSettings::threads) summed into the grains
+// in the order the single-threaded loop adds them: the bits of one thread for any thread count.
+//
+// One thread adds entry by entry, in increasing entry k; each entry (i, j) has i < j and the rows
+// are ordered by i. A grain x therefore receives first its entries as partner (rows i < x), in
+// increasing k, then its own row. With the rows cut into consecutive shares, one per thread, a
+// grain whose entries all lie in one thread's share receives them all from that thread, in
+// order: it is summed directly (law_loop.hpp, pair_forces). The others, the halo grains, are
+// partners of an earlier share's rows: near a share's boundary, after the spatial sort a thin
+// layer of grains. Their contacts wait in per-entry slots until every share is done.
+#include <algorithm>
+
 #include "libgran/core/parallel.hpp"
 #include "libgran/engines/dem/engine.hpp"
 
 namespace gran {
 
-// The touched entries of every thread, in increasing entry order (the threads' shares are
-// consecutive ranges), added as the single-threaded loop adds them. Each thread reads them all
-// and adds only into its own range of particles: every particle still receives its contacts in
-// entry order, so the sums are the same bits for any split.
+// The shares: consecutive rows holding about equal numbers of entries (cut at the first row
+// starting at or after each thread's equal split of the entries). A grain is a halo grain if its
+// first entry as partner (by_partner is in increasing k) comes before its share's first entry.
 template <int D>
-void DemEngine<D>::add_touched_pair_forces() {
-    const bool rot = p_.rotating();
-    const std::uint32_t* owner = list_.owner.data();
-    const std::uint32_t* partner = list_.partner.data();
-    const Vec<D>* pf = pair_force_.data();
-    const AngVec<D>* pti = pair_torque_i_.data();
-    const AngVec<D>* ptj = pair_torque_j_.data();
-    Vec<D>* f = f_.data();
-    AngVec<D>* tau = tau_.data();
-    parallel_chunks(threads_, p_.size(), [&](std::size_t, std::size_t x0, std::size_t x1) {
-        for (const std::vector<std::uint32_t>& part : touched_) {
-            for (const std::uint32_t k : part) {
-                const std::uint32_t i = owner[k], j = partner[k];
-                if (i >= x0 && i < x1) {
-                    f[i] += pf[k];
-                    if (rot) tau[i] += pti[k];
-                }
-                if (j >= x0 && j < x1) {
-                    f[j] -= pf[k];
-                    if (rot) tau[j] += ptj[k];
-                }
+void DemEngine<D>::split_pair_rows() {
+    const std::size_t n = p_.size(), parts = std::size_t(threads_);
+    const std::uint32_t* start = list_.start.data();
+    const std::uint32_t* partner_start = list_.partner_start.data();
+    const std::uint32_t* by_partner = list_.by_partner.data();
+    pair_rows_.assign(parts + 1, 0);
+    pair_rows_[parts] = n;
+    for (std::size_t t = 1; t < parts; ++t) {
+        std::size_t k0 = 0, k1 = 0;
+        chunk_bounds(list_.entries(), t, parts, k0, k1);
+        const std::size_t row = std::size_t(std::lower_bound(start, start + n, k0) - start);
+        pair_rows_[t] = std::max(pair_rows_[t - 1], row);
+    }
+    halo_.assign(n, 0);
+    halo_list_.clear();
+    for (std::size_t t = 0; t < parts; ++t) {
+        const std::uint32_t first = start[pair_rows_[t]];
+        for (std::size_t x = pair_rows_[t]; x < pair_rows_[t + 1]; ++x) {
+            const std::uint32_t q = partner_start[x];
+            if (q < partner_start[x + 1] && by_partner[q] < first) {
+                halo_[x] = 1;
+                halo_list_.push_back(std::uint32_t(x));
             }
         }
-    });
+    }
+    pair_split_stale_ = false;
 }
 
-// Each particle's pair contacts summed from the per-entry slots of the threaded force loop
-// (law_loop.hpp), in the order the single-threaded loop adds them.
+// Share `part` of `parts` of the halo grains: each one's slots, as partner (earlier rows, so
+// first) then as owner (its own row), in increasing entry order, as one thread adds them.
 template <int D>
-void DemEngine<D>::sum_pair_forces() {
+void DemEngine<D>::sum_halo_pair_forces(std::size_t part, std::size_t parts) {
     const bool rot = p_.rotating();
     const std::uint32_t* start = list_.start.data();
     const std::uint32_t* partner_start = list_.partner_start.data();
@@ -50,36 +61,35 @@ void DemEngine<D>::sum_pair_forces() {
     const AngVec<D>* ptj = pair_torque_j_.data();
     Vec<D>* f = f_.data();
     AngVec<D>* tau = tau_.data();
-    parallel_chunks(threads_, p_.size(), [&](std::size_t, std::size_t x0, std::size_t x1) {
-        for (std::size_t x = x0; x < x1; ++x) {
-            // As partner j (entries of lower-index owners: earlier rows, so first), then as
-            // owner i (its own row).
-            Vec<D> fx = f[x];
-            for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
-                const std::uint32_t k = by_partner[q];
-                if (touching[k]) fx -= pf[k];
-            }
-            for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
-                if (touching[k]) fx += pf[k];
-            }
-            f[x] = fx;
-            if (!rot) continue;
-            AngVec<D> tx = tau[x];
-            for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
-                const std::uint32_t k = by_partner[q];
-                if (touching[k]) tx += ptj[k];
-            }
-            for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
-                if (touching[k]) tx += pti[k];
-            }
-            tau[x] = tx;
+    std::size_t h0 = 0, h1 = 0;
+    chunk_bounds(halo_list_.size(), part, parts, h0, h1);
+    for (std::size_t h = h0; h < h1; ++h) {
+        const std::uint32_t x = halo_list_[h];
+        Vec<D> fx = f[x];
+        for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
+            const std::uint32_t k = by_partner[q];
+            if (touching[k]) fx -= pf[k];
         }
-    });
+        for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
+            if (touching[k]) fx += pf[k];
+        }
+        f[x] = fx;
+        if (!rot) continue;
+        AngVec<D> tx = tau[x];
+        for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
+            const std::uint32_t k = by_partner[q];
+            if (touching[k]) tx += ptj[k];
+        }
+        for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
+            if (touching[k]) tx += pti[k];
+        }
+        tau[x] = tx;
+    }
 }
 
-template void DemEngine<2>::add_touched_pair_forces();
-template void DemEngine<3>::add_touched_pair_forces();
-template void DemEngine<2>::sum_pair_forces();
-template void DemEngine<3>::sum_pair_forces();
+template void DemEngine<2>::split_pair_rows();
+template void DemEngine<3>::split_pair_rows();
+template void DemEngine<2>::sum_halo_pair_forces(std::size_t, std::size_t);
+template void DemEngine<3>::sum_halo_pair_forces(std::size_t, std::size_t);
 
 }  // namespace gran

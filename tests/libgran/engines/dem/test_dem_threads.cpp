@@ -50,7 +50,8 @@ TEST(DemThreads, StepsOnTwoAndThreeThreadsGiveTheBitsOfOneThread) {
     check_thread_counts<3>();
 }
 
-// Many contacts per grain: the threads sum the forces particle by particle, on two and on three
+// Many contacts per grain, every grain next to a share's cut receiving contacts from two
+// threads' rows (halo grains, summed from their slots after the rows), on two and on three
 // threads.
 template <int D>
 void check_crowded() {
