@@ -58,7 +58,7 @@ void DemNeighbourList<D>::configure(const Box<D>& box, std::vector<double> cutof
 
 // The cell grid of this build: periodic axes as configured, bounded axes over the occupied range.
 template <int D>
-void DemNeighbourList<D>::grid(const std::vector<Vec<D>>& r) {
+void DemNeighbourList<D>::grid(const std::vector<Vec<D>>& r, bool across_periodic) {
     std::array<double, D> hi{};
     for (std::size_t a = 0; a < std::size_t(D); ++a) {
         lo_[a] = periodic_[a] ? 0.0 : kInf;
@@ -90,10 +90,26 @@ void DemNeighbourList<D>::grid(const std::vector<Vec<D>>& r) {
     }
     // At most cap_ cells (periodic axes keep >= 3).
     coarsen_cells<D>(ncell_, periodic_, cap_, 3, 1);
+    // x fastest; with across_periodic, the periodic axis of most cells slowest instead.
+    std::array<std::size_t, D> axes{};
+    for (std::size_t a = 0; a < std::size_t(D); ++a) axes[a] = a;
+    if (across_periodic) {
+        std::size_t slowest = std::size_t(D);
+        for (std::size_t a = 0; a < std::size_t(D); ++a) {
+            if (periodic_[a] && (slowest == std::size_t(D) || ncell_[a] > ncell_[slowest]))
+                slowest = a;
+        }
+        if (slowest < std::size_t(D)) {
+            std::rotate(axes.begin() + std::ptrdiff_t(slowest),
+                        axes.begin() + std::ptrdiff_t(slowest) + 1, axes.end());
+        }
+    }
     std::int32_t stride = 1;
-    for (std::size_t a = 0; a < std::size_t(D); ++a) {
+    for (const std::size_t a : axes) {
         stride_[a] = stride;
         stride *= ncell_[a];
+    }
+    for (std::size_t a = 0; a < std::size_t(D); ++a) {
         inv_width_[a] = span[a] > 0 ? ncell_[a] / span[a] : 0.0;
         const std::int32_t nc = ncell_[a];
         near_[a].resize(3 * std::size_t(nc));
