@@ -23,7 +23,10 @@
 // --stages times the stages of each step (DemEngine::time_stages) and prints, after each size's
 // row, their wall-clock nanoseconds per particle-step: the half kicks and the drift, the
 // neighbour list (rebuild test, builds, sorts), the grain-grain and the grain-wall contacts, and
-// the rest of the timed loop (the clock reads themselves, about five per step, among it).
+// the rest of the timed loop (the clock reads themselves, about five per step, among it). On
+// more than one thread a second line says how evenly the work was cut, averaged over the timed
+// list builds: the halo grains of the pair shares (their contacts go through per-entry slots)
+// and the list search's largest share of work over the mean share.
 //
 // --W 0 keeps the floor static: the bed settles during the warm-up (periods of the W = 9 drive)
 // and the timed part measures a dense bed at rest (about 6 contacts per grain) instead of the
@@ -137,6 +140,17 @@ void print_stages(const DemStageTimes& t, double wall, double psteps) {
         (wall - t.total()) * ns, wall * ns);
 }
 
+// How evenly the threads' work was cut (threaded runs): the halo grains of the pair shares and
+// the list search's largest share over the mean, averaged over the timed list builds.
+void print_shares(const DemThreadShares& s) {
+    if (s.splits == 0 || s.searches == 0) return;
+    std::printf(
+        "# thread shares, mean of %llu list builds: halo grains %.0f (%.2f%% of N), "
+        "search work max / mean %.3f\n",
+        static_cast<unsigned long long>(s.splits), s.halo_grains / double(s.splits),
+        100.0 * s.halo_grains / s.grains, s.search_imbalance / double(s.searches));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -171,7 +185,10 @@ int main(int argc, char** argv) {
                     double(e.counters().rebuilds - before.rebuilds) / double(steps),
                     2.0 * double(contact_sum) / (double(steps) * double(n)), tz,
                     e.counters().max_overlap, static_cast<unsigned long long>(state_hash(ps)));
-        if (opt.stages) print_stages(e.stage_times(), wall, psteps);
+        if (opt.stages) {
+            print_stages(e.stage_times(), wall, psteps);
+            print_shares(e.thread_shares());
+        }
         std::fflush(stdout);
         if (!opt.csv.empty()) {
             const bool fresh = !std::ifstream(opt.csv).good();

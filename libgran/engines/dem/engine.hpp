@@ -89,6 +89,17 @@ struct DemStageTimes {
     }
 };
 
+// How evenly a threaded step's work is cut (DemEngine::time_stages), summed over the list builds
+// of the timed steps: the halo grains of the pair shares (threaded_sums.cpp) and the list
+// search's imbalance, the largest thread's work over the mean (DemNeighbourList::search_work).
+struct DemThreadShares {
+    std::uint64_t splits = 0;     // pair-row splits (one per build on more than one thread)
+    double halo_grains = 0;       // sum over the splits of the halo grains
+    double grains = 0;            // sum over the splits of the grains
+    std::uint64_t searches = 0;   // list builds searched on more than one thread
+    double search_imbalance = 0;  // sum over those builds of max / mean work per thread
+};
+
 struct DemEnergies {
     double translational = 0;  // sum m v^2 / 2
     double rotational = 0;     // sum I w^2 / 2
@@ -156,9 +167,13 @@ class DemEngine {
     // false stops timing and keeps the times. No bit of the run changes.
     void time_stages(bool on) {
         stage_clock_.enable(on);
-        if (on) stage_times_ = DemStageTimes{};
+        if (on) {
+            stage_times_ = DemStageTimes{};
+            thread_shares_ = DemThreadShares{};
+        }
     }
     const DemStageTimes& stage_times() const { return stage_times_; }
+    const DemThreadShares& thread_shares() const { return thread_shares_; }
     const ContactTable& contacts() const { return contacts_; }
     std::size_t species_count() const { return mass_.size(); }
     double species_mass(std::uint32_t s) const { return mass_[s]; }
@@ -260,6 +275,7 @@ class DemEngine {
     // serial order, by thread `part` of `parts`.
     void split_pair_rows();
     void sum_halo_pair_forces(std::size_t part, std::size_t parts);
+    void tally_search_shares();
     // Step stages over particles [i0, i1): the first half kick and the drift (returns the
     // largest squared displacement since the last build), preceded, with ClosingKick, by the
     // previous step's second half kick; and that second half kick alone.
@@ -281,6 +297,7 @@ class DemEngine {
     DemCounters counters_;
     StageClock stage_clock_;
     DemStageTimes stage_times_;
+    DemThreadShares thread_shares_;  // tallied while the stages are timed
     Vec<D> g_ = Vec<D>::Zero();
     double dt_ = 0;
     double t_start_ = 0;

@@ -45,6 +45,26 @@ void DemEngine<D>::split_pair_rows() {
         }
     }
     pair_split_stale_ = false;
+    if (stage_clock_.enabled()) {
+        ++thread_shares_.splits;
+        thread_shares_.halo_grains += double(halo_list_.size());
+        thread_shares_.grains += double(n);
+    }
+}
+
+// The last build's search imbalance, max / mean work per thread, into thread_shares_.
+template <int D>
+void DemEngine<D>::tally_search_shares() {
+    const std::vector<std::uint64_t>& work = list_.search_work();
+    if (work.empty()) return;
+    std::uint64_t total = 0, most = 0;
+    for (const std::uint64_t w : work) {
+        total += w;
+        most = std::max(most, w);
+    }
+    if (total == 0) return;
+    ++thread_shares_.searches;
+    thread_shares_.search_imbalance += double(most) * double(work.size()) / double(total);
 }
 
 // Share `part` of `parts` of the halo grains: each one's slots, as partner (earlier rows, so
@@ -89,6 +109,8 @@ void DemEngine<D>::sum_halo_pair_forces(std::size_t part, std::size_t parts) {
 
 template void DemEngine<2>::split_pair_rows();
 template void DemEngine<3>::split_pair_rows();
+template void DemEngine<2>::tally_search_shares();
+template void DemEngine<3>::tally_search_shares();
 template void DemEngine<2>::sum_halo_pair_forces(std::size_t, std::size_t);
 template void DemEngine<3>::sum_halo_pair_forces(std::size_t, std::size_t);
 

@@ -2,8 +2,10 @@
 // stage of a step timed, nothing outside the steps counted, and no bit of the run changed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include "libgran/engines/dem/engine.hpp"
 #include "tests/support/dem_beds.hpp"
@@ -81,6 +83,50 @@ TEST(DemStageTimes, TimingChangesNoBitOfTheRun) {
     EXPECT_GT(timed.stage_times().total(), 0);
     expect_same_state(plain, timed, "timed");
     expect_same_state(plain, timed_two, "timed, 2 threads");
+}
+
+// The tally of the threads' shares (DemEngine::thread_shares), checked against the list itself
+// over one build: the halo grains of a two-thread cut are the grains from the second share's
+// first row on that are partners of an earlier row (the row holding the middle entry starts the
+// second share); the search imbalance is the largest share's work over the mean.
+TEST(DemStageTimes, OnTwoThreadsTheHaloGrainsAreThePartnersOfTheFirstSharesRows) {
+    DemEngine<3> e = bed_engine<3>(dense_bed<3>(2000), 2);
+    e.steps(5);
+    e.time_stages(true);
+    const std::uint64_t rebuilds = e.counters().rebuilds;
+    for (int k = 0; k < 2000 && e.counters().rebuilds == rebuilds; ++k) e.step();
+    ASSERT_EQ(e.counters().rebuilds, rebuilds + 1) << "the comparison needs one list build";
+    const DemThreadShares& s = e.thread_shares();
+    ASSERT_EQ(s.splits, 1u);
+    ASSERT_EQ(s.searches, 1u);
+
+    const DemNeighbourList<3>& list = e.neighbour_list();
+    const std::size_t n = e.particles().size();
+    const std::size_t middle = (list.entries() + 1) / 2;
+    const auto cut = std::size_t(
+        std::lower_bound(list.start.begin(), list.start.end() - 1, std::uint32_t(middle)) -
+        list.start.begin());
+    std::vector<bool> halo(n, false);
+    for (std::size_t i = 0; i < cut; ++i) {
+        for (std::uint32_t k = list.start[i]; k < list.start[i + 1]; ++k) {
+            if (list.partner[k] >= cut) halo[list.partner[k]] = true;
+        }
+    }
+    const auto expected = double(std::count(halo.begin(), halo.end(), true));
+    EXPECT_GT(expected, 0) << "a dense bed cut in two has grains on both sides of the cut";
+    EXPECT_EQ(s.halo_grains, expected);
+    EXPECT_EQ(s.grains, double(n));
+
+    const std::vector<std::uint64_t>& work = list.search_work();
+    ASSERT_EQ(work.size(), 2u);
+    const double mean = 0.5 * double(work[0] + work[1]);
+    EXPECT_DOUBLE_EQ(s.search_imbalance, double(std::max(work[0], work[1])) / mean);
+
+    DemEngine<3> one = bed_engine<3>(dense_bed<3>(2000), 1);
+    one.time_stages(true);
+    one.steps(300);
+    EXPECT_EQ(one.thread_shares().splits, 0u) << "one thread cuts nothing";
+    EXPECT_EQ(one.thread_shares().searches, 0u);
 }
 
 }  // namespace
