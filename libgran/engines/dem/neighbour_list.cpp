@@ -205,6 +205,30 @@ std::uint64_t DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
         const std::uint64_t i = order[a], j = order[b];
         out.push_back(i < j ? (i << 32 | j) : (j << 32 | i));
     };
+    // The pairs of the particles of slots [b0, b1) (a cell) with those of [e0, e1) (a stencil
+    // cell), seen shifted by sh (the periodic image).
+    const auto cell_pairs = [&](std::uint32_t b0, std::uint32_t b1, std::uint32_t e0,
+                                std::uint32_t e1, const Vec<D>& sh) {
+        for (std::uint32_t a = b0; a < b1; ++a) {
+            const Vec<D> xa = xs[a] + sh;
+            const double* cut = cut2 + ss[a] * ns;
+            for (std::uint32_t b = e0; b < e1; ++b) {
+                Vec<D> d = xa - xs[b];
+                wrap(d);
+                if (d.squaredNorm() < cut[ss[b]]) push(a, b);
+            }
+        }
+    };
+    // A cell away from the grid's edges (every coordinate but the last neither first nor last;
+    // the last not last: the half stencil's last offset is 0 or +1) has every stencil cell, none
+    // across a periodic boundary: each is a fixed index offset away, with no shift. The edges
+    // take each offset's neighbour per axis (near_, shift_). The same cells in the same order.
+    std::array<std::int64_t, kStencil> offset{};
+    for (std::size_t k = 0; k < stencil_.size(); ++k) {
+        for (std::size_t a = 0; a < std::size_t(D); ++a)
+            offset[k] += std::int64_t(stencil_[k][a]) * stride_[a];
+    }
+    const Vec<D> no_shift = Vec<D>::Zero();
     std::uint64_t work = 0;           // pair tests and stencil visits (balance_search)
     std::array<std::int32_t, D> q{};  // coordinates of cell c
     std::size_t rest = c0;
@@ -231,6 +255,19 @@ std::uint64_t DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
                 if (d.squaredNorm() < cut[ss[b]]) push(a, b);
             }
         }
+        bool inside = q[D - 1] < ncell_[D - 1] - 1;
+        for (std::size_t a = 0; a + 1 < std::size_t(D); ++a)
+            inside = inside && q[a] > 0 && q[a] < ncell_[a] - 1;
+        if (inside) {
+            for (const std::int64_t off : offset) {
+                const auto nc = std::size_t(std::int64_t(c) + off);
+                const std::uint32_t e0 = cs[nc], e1 = cs[nc + 1];
+                if (e0 == e1) continue;
+                work += std::uint64_t(b1 - b0) * (e1 - e0);
+                cell_pairs(b0, b1, e0, e1, no_shift);
+            }
+            continue;
+        }
         for (const auto& o : stencil_) {
             std::int32_t nc = 0;
             Vec<D> sh;
@@ -249,15 +286,7 @@ std::uint64_t DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
             const std::uint32_t e0 = cs[nc], e1 = cs[nc + 1];
             if (e0 == e1) continue;
             work += std::uint64_t(b1 - b0) * (e1 - e0);
-            for (std::uint32_t a = b0; a < b1; ++a) {
-                const Vec<D> xa = xs[a] + sh;
-                const double* cut = cut2 + ss[a] * ns;
-                for (std::uint32_t b = e0; b < e1; ++b) {
-                    Vec<D> d = xa - xs[b];
-                    wrap(d);
-                    if (d.squaredNorm() < cut[ss[b]]) push(a, b);
-                }
-            }
+            cell_pairs(b0, b1, e0, e1, sh);
         }
     }
     return work;
