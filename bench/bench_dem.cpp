@@ -51,6 +51,7 @@
 
 #include "bench/bench_clock.hpp"
 #include "bench/vibrated_bed.hpp"
+#include "libgran/core/huge_pages.hpp"
 #include "libgran/core/random.hpp"
 #include "libgran/engines/dem/engine.hpp"
 #include "libgran/scene/placement.hpp"
@@ -154,6 +155,7 @@ void print_shares(const DemThreadShares& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    gran::use_huge_pages(argv);  // may re-execute this program once (huge_pages.hpp)
     const Options opt = parse(argc, argv);
     const double period = kBedPeriod;
     std::printf("%8s %6s %10s %14s %14s %10s %10s %8s %10s %18s\n", "N", "width", "steps",

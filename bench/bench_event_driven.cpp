@@ -33,6 +33,7 @@
 
 #include "bench/bench_clock.hpp"
 #include "bench/bench_memory.hpp"
+#include "libgran/core/huge_pages.hpp"
 #include "libgran/core/kinetic_theory.hpp"
 #include "libgran/engines/event_driven/engine.hpp"
 #include "libgran/scene/interactions.hpp"
@@ -542,6 +543,7 @@ bool write_csv(const std::string& csv, const std::vector<Result>& results) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    gran::use_huge_pages(argv);  // may re-execute this program once (huge_pages.hpp)
     const auto parsed = parse(argc, argv);
     if (!parsed) {
         usage(stderr);

@@ -29,6 +29,7 @@
 #include "bench/feature_scenes.hpp"
 #include "bench/minimal_event_driven.hpp"
 #include "libgran/core/h5.hpp"
+#include "libgran/core/huge_pages.hpp"
 #include "libgran/run/run.hpp"
 #include "libgran/scene/placement.hpp"
 #include "libgran/scene/scene.hpp"
@@ -444,6 +445,7 @@ bool write_csv(const std::string& csv, const std::vector<MinimalComparison>& min
 }  // namespace
 
 int main(int argc, char** argv) {
+    gran::use_huge_pages(argv);  // may re-execute this program once (huge_pages.hpp)
     auto parsed = parse(argc, argv);
     if (!parsed) {
         usage(stderr);

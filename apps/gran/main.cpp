@@ -23,6 +23,7 @@
 #include "apps/gran/signals.hpp"
 #include "apps/gran/study_commands.hpp"
 #include "libgran/core/build_info.hpp"
+#include "libgran/core/huge_pages.hpp"
 #include "libgran/run/checkpoint.hpp"
 #include "libgran/run/run.hpp"
 #include "libgran/run/simulation.hpp"
@@ -517,6 +518,7 @@ int cmd_run(const CommandLine& cl, bool check_only, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    gran::use_huge_pages(argv);  // may re-execute this program once (huge_pages.hpp)
     CLI::App app{
         "gran: event-driven simulations of granular gases (inelastic hard disks and spheres)"};
     app.require_subcommand(1);
