@@ -11,8 +11,9 @@ namespace gran {
 
 template <int D>
 void DemNeighbourList<D>::configure(const Box<D>& box, std::vector<double> cutoff, std::size_t ns,
-                                    std::size_t n_particles, bool history) {
+                                    std::size_t n_particles, bool history, bool sorted) {
     history_ = history;
+    sorted_ = sorted;
     ns_ = ns;
     cutoff2_ = std::move(cutoff);
     widest_ = 0;
@@ -91,7 +92,7 @@ void DemNeighbourList<D>::grid(const std::vector<Vec<D>>& r, bool across_periodi
     // At most cap_ cells (periodic axes keep >= 3).
     coarsen_cells<D>(ncell_, periodic_, cap_, 3, 1);
     // x fastest; with across_periodic, the periodic axis of most cells slowest instead.
-    std::array<std::size_t, D> axes{};
+    std::array<std::size_t, D>& axes = axes_;
     for (std::size_t a = 0; a < std::size_t(D); ++a) axes[a] = a;
     if (across_periodic) {
         std::size_t slowest = std::size_t(D);
@@ -138,39 +139,91 @@ void DemNeighbourList<D>::grid(const std::vector<Vec<D>>& r, bool across_periodi
     cell_start_.assign(std::size_t(stride) + 1, 0u);
 }
 
+// The cell of a point of the grid's range (clamped to the grid; NaN to its first cell).
+template <int D>
+std::uint32_t DemNeighbourList<D>::cell_index(const Vec<D>& x) const {
+    std::uint32_t id = 0;
+    for (std::size_t a = 0; a < std::size_t(D); ++a) {
+        double f = std::floor((x[int(a)] - lo_[a]) * inv_width_[a]);
+        const double top = ncell_[a] - 1;
+        if (!(f >= 0)) f = 0;  // also NaN
+        if (f > top) f = top;
+        id += static_cast<std::uint32_t>(f) * std::uint32_t(stride_[a]);
+    }
+    return id;
+}
+
 // Counting sort of the particles by cell (stable: increasing index within a cell); positions
-// and species are copied in cell order for the pair search.
+// and species are copied in cell order for the pair search. On several threads each counts and
+// then places the particles of its share of the indices; a cell's particles of thread t go after
+// those of the threads before it, which hold lower indices: the order of one thread.
 template <int D>
 void DemNeighbourList<D>::bin(const std::vector<Vec<D>>& r,
-                              const std::vector<std::uint32_t>& species) {
+                              const std::vector<std::uint32_t>& species, int threads) {
     const std::size_t n = r.size();
-    cell_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        std::uint32_t id = 0;
-        for (std::size_t a = 0; a < std::size_t(D); ++a) {
-            double f = std::floor((r[i][int(a)] - lo_[a]) * inv_width_[a]);
-            const double top = ncell_[a] - 1;
-            if (!(f >= 0)) f = 0;  // also NaN
-            if (f > top) f = top;
-            id += static_cast<std::uint32_t>(f) * std::uint32_t(stride_[a]);
-        }
-        cell_[i] = id;
-        ++cell_start_[id];
-    }
-    // Inclusive prefix sums: cell_start_[c] is the end of cell c; filled from the back, it ends
-    // at the beginning of cell c.
     const std::size_t cells = cell_start_.size() - 1;
-    for (std::size_t c = 1; c < cells; ++c) cell_start_[c] += cell_start_[c - 1];
-    cell_start_[cells] = std::uint32_t(n);
+    cell_.resize(n);
     order_.resize(n);
     xs_.resize(n);
     ss_.resize(n);
-    for (std::size_t i = n; i-- > 0;) {
-        const std::uint32_t slot = --cell_start_[cell_[i]];
-        order_[slot] = std::uint32_t(i);
-        xs_[slot] = r[i];
-        ss_[slot] = species[i];
+    if (threads <= 1) {
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t id = cell_index(r[i]);
+            cell_[i] = id;
+            ++cell_start_[id];
+        }
+        // Inclusive prefix sums: cell_start_[c] is the end of cell c; filled from the back, it
+        // ends at the beginning of cell c.
+        for (std::size_t c = 1; c < cells; ++c) cell_start_[c] += cell_start_[c - 1];
+        cell_start_[cells] = std::uint32_t(n);
+        for (std::size_t i = n; i-- > 0;) {
+            const std::uint32_t slot = --cell_start_[cell_[i]];
+            order_[slot] = std::uint32_t(i);
+            xs_[slot] = r[i];
+            ss_[slot] = species[i];
+        }
+        return;
     }
+    bin_count_.resize(std::size_t(threads));
+    bin_total_.resize(std::size_t(threads));
+    parallel_parts(threads, [&](std::size_t part, std::size_t parts) {
+        std::size_t i0 = 0, i1 = 0, c0 = 0, c1 = 0;
+        chunk_bounds(n, part, parts, i0, i1);
+        chunk_bounds(cells, part, parts, c0, c1);
+        std::vector<std::uint32_t>& count = bin_count_[part];
+        count.assign(cells, 0u);
+        for (std::size_t i = i0; i < i1; ++i) {
+            const std::uint32_t id = cell_index(r[i]);
+            cell_[i] = id;
+            ++count[id];
+        }
+        parts_barrier();
+        std::uint32_t grains = 0;  // of this share of the cells
+        for (std::size_t c = c0; c < c1; ++c) {
+            for (std::size_t t = 0; t < parts; ++t) grains += bin_count_[t][c];
+        }
+        bin_total_[part] = grains;
+        parts_barrier();
+        // Each thread's first slot in each cell of this share.
+        std::uint32_t slot = 0;
+        for (std::size_t t = 0; t < part; ++t) slot += bin_total_[t];
+        for (std::size_t c = c0; c < c1; ++c) {
+            cell_start_[c] = slot;
+            for (std::size_t t = 0; t < parts; ++t) {
+                const std::uint32_t k = bin_count_[t][c];
+                bin_count_[t][c] = slot;
+                slot += k;
+            }
+        }
+        parts_barrier();
+        for (std::size_t i = i0; i < i1; ++i) {
+            const std::uint32_t at = count[cell_[i]]++;
+            order_[at] = std::uint32_t(i);
+            xs_[at] = r[i];
+            ss_[at] = species[i];
+        }
+    });
+    cell_start_[cells] = std::uint32_t(n);
 }
 
 // The pairs of the cells [c0, c1) (each cell with itself and its half stencil), appended to
@@ -229,16 +282,17 @@ std::uint64_t DemNeighbourList<D>::find_pairs(std::size_t c0, std::size_t c1,
             offset[k] += std::int64_t(stencil_[k][a]) * stride_[a];
     }
     const Vec<D> no_shift = Vec<D>::Zero();
-    std::uint64_t work = 0;           // pair tests and stencil visits (balance_search)
-    std::array<std::int32_t, D> q{};  // coordinates of cell c
+    std::uint64_t work = 0;  // pair tests and stencil visits (balance_search)
+    // Coordinates of cell c, which advance as the cell index does: the fastest axis first.
+    std::array<std::int32_t, D> q{};
     std::size_t rest = c0;
-    for (std::size_t a = 0; a < std::size_t(D); ++a) {
+    for (const std::size_t a : axes_) {
         q[a] = std::int32_t(rest % std::size_t(ncell_[a]));
         rest /= std::size_t(ncell_[a]);
     }
     for (std::size_t c = c0; c < c1; ++c) {
         if (c != c0) {
-            for (std::size_t a = 0; a < std::size_t(D); ++a) {
+            for (const std::size_t a : axes_) {
                 if (++q[a] < ncell_[a]) break;
                 q[a] = 0;
             }
@@ -321,8 +375,8 @@ void DemNeighbourList<D>::build(const std::vector<Vec<D>>& r,
         }
     }
 
-    grid(r);
-    bin(r, species);
+    grid(r, sorted_);
+    bin(r, species, std::max(threads, 1));
     find_rows(n, std::max(threads, 1));
     touching.assign(partner.size(), 0);
     if (history_) spring.assign(partner.size(), Vec<D>::Zero());

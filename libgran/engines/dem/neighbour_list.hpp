@@ -17,9 +17,10 @@
 //  - Each entry carries the contact state of the pair (touching at the last force evaluation)
 //    and, when `history` is on, its tangential spring. Only the entries in contact are carried
 //    over to the next build (a pair in contact is closer than sigma_ij, hence in the new list).
-//  - On several threads, each searches the cells whose particles fall in its share of the slots
-//    into its own segment; the segments in thread order are the one-thread sequence of pairs and
-//    the rows are filled as that sequence would fill them: the same entries in the same order.
+//  - On several threads, each bins its share of the particles (per-thread counts per cell, the
+//    same slots as one thread), then searches the cells whose particles fall in its share of the
+//    slots into its own segment; the segments in thread order are the one-thread sequence of pairs
+//    and the rows are filled as that sequence would fill them: the same entries in the same order.
 //  - No allocation in steady state: every buffer keeps its capacity across builds.
 #include <array>
 #include <cstddef>
@@ -36,8 +37,10 @@ template <int D>
 class DemNeighbourList {
   public:
     // cutoff: ns x ns pair cutoffs sigma_ij + skin. history: keep tangential springs per entry.
+    // sorted: the caller stores its particles in spatial_order()'s order; the builds then bin
+    // and search the cells in that order too, so both walk the particles' memory forwards.
     void configure(const Box<D>& box, std::vector<double> cutoff, std::size_t ns,
-                   std::size_t n_particles, bool history);
+                   std::size_t n_particles, bool history, bool sorted = false);
     // On `threads` threads: the same entries in the same order for any count. `new_index`: the
     // particles were renumbered since the last build (the one at i is now at new_index[i]), so
     // the contacts carried over are renumbered too; null: they were not.
@@ -49,7 +52,8 @@ class DemNeighbourList {
     // slowest (x fastest otherwise): cut into consecutive shares of the grains (the threads' rows
     // of the pair loop), the bed is cut across that axis, where the cut meets the fewest grains
     // (in a bed on a floor the density varies along the bounded axis, and a cut across it went
-    // through 10% of the grains of a wide bed at N = 10^5). The pair search keeps x fastest.
+    // through 10% of the grains of a wide bed at N = 10^5). Configured `sorted`, the builds'
+    // cells run in this order too; otherwise x fastest.
     const std::vector<std::uint32_t>& spatial_order(const std::vector<Vec<D>>& r,
                                                     const std::vector<std::uint32_t>& species) {
         grid(r, true);
@@ -105,7 +109,9 @@ class DemNeighbourList {
     };
 
     void grid(const std::vector<Vec<D>>& r, bool across_periodic = false);
-    void bin(const std::vector<Vec<D>>& r, const std::vector<std::uint32_t>& species);
+    std::uint32_t cell_index(const Vec<D>& x) const;
+    void bin(const std::vector<Vec<D>>& r, const std::vector<std::uint32_t>& species,
+             int threads = 1);
     template <bool MinImage>
     std::uint64_t find_pairs(std::size_t c0, std::size_t c1, std::vector<std::uint64_t>& out) const;
     void find_rows(std::size_t n, int threads);
@@ -114,6 +120,7 @@ class DemNeighbourList {
     void index_by_partner();
 
     bool history_ = false;
+    bool sorted_ = false;  // builds bin in spatial_order()'s axis order
     bool by_partner_on_ = false;
     std::size_t ns_ = 0;
     double widest_ = 0;
@@ -123,6 +130,7 @@ class DemNeighbourList {
     std::array<double, D> length_{};
     std::array<std::int32_t, D> ncell_{};
     std::array<std::int32_t, D> stride_{};
+    std::array<std::size_t, D> axes_{};  // the axes from the fastest-running stride to the slowest
     std::array<double, D> lo_{}, inv_width_{};
     bool min_image_ = false;  // a periodic axis has a single cell
     std::array<std::array<std::int8_t, D>, kStencil> stencil_{};
@@ -145,6 +153,10 @@ class DemNeighbourList {
     std::vector<std::size_t> search_split_, search_cut_;
     std::vector<std::uint64_t> search_work_;
     std::vector<std::uint32_t> fill_;  // index_by_partner(): next free slot per partner
+    // bin() on several threads: per thread, its grains per cell, then its next slot per cell;
+    // and the grains of each thread's share of the cells.
+    std::vector<std::vector<std::uint32_t>> bin_count_;
+    std::vector<std::uint32_t> bin_total_;
 };
 
 extern template class DemNeighbourList<2>;

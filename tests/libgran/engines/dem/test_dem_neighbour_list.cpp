@@ -1,5 +1,7 @@
 // The DEM neighbour list on several threads (libgran/engines/dem/neighbour_list.cpp): the
-// threads' shares of the cell search follow the work, and any shares give the same entries.
+// threads' shares of the cell search follow the work, and any shares give the same entries; a
+// list whose caller stores the grains sorted searches its cells in that order and finds the same
+// pairs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,13 +31,24 @@ std::vector<Vec<3>> layered_bed() {
     return r;
 }
 
-DemNeighbourList<3> configured(std::size_t n) {
+DemNeighbourList<3> configured(std::size_t n, bool sorted = false) {
     Box<3> box;
     box.length = Vec<3>(30, 30, 60);
     box.periodic = {true, true, false};
     DemNeighbourList<3> list;
-    list.configure(box, {1.2}, 1, n, false);
+    list.configure(box, {1.2}, 1, n, false, sorted);
     return list;
+}
+
+// Each row's partners in increasing order: the pairs, whatever order the search met them in.
+std::vector<std::vector<std::uint32_t>> rows(const DemNeighbourList<3>& list) {
+    std::vector<std::vector<std::uint32_t>> out(list.start.size() - 1);
+    for (std::size_t i = 0; i + 1 < list.start.size(); ++i) {
+        out[i].assign(list.partner.begin() + list.start[i],
+                      list.partner.begin() + list.start[i + 1]);
+        std::sort(out[i].begin(), out[i].end());
+    }
+    return out;
 }
 
 double imbalance(const std::vector<std::uint64_t>& work) {
@@ -60,6 +73,34 @@ TEST(DemNeighbourList, SecondBuildCutsTheThreadsSharesToEvenOutTheirWork) {
     EXPECT_EQ(two.start, one.start);
     EXPECT_EQ(two.partner, one.partner);
     EXPECT_GT(one.entries(), r.size()) << "the comparison needs pairs";
+}
+
+// The grains renumbered in spatial_order() (as the engine stores them), then listed by a list
+// that searches x fastest and by one configured `sorted` (its cells in the storage order): the
+// same pairs, met in another order; and on 1, 2 and 3 threads (the binning and the search split)
+// each finds its own entries in the same order.
+TEST(DemNeighbourList, SortedListFindsThePairsOfXFastestCellsOnAnyThreads) {
+    const std::vector<Vec<3>> unsorted = layered_bed();
+    const std::vector<std::uint32_t> species(unsorted.size(), 0);
+    DemNeighbourList<3> x_fastest = configured(unsorted.size());
+    const std::vector<std::uint32_t> order = x_fastest.spatial_order(unsorted, species);
+    std::vector<Vec<3>> r;
+    for (const std::uint32_t i : order) r.push_back(unsorted[i]);
+    x_fastest.build(r, species, 1);
+    DemNeighbourList<3> sorted = configured(r.size(), true);
+    sorted.build(r, species, 1);
+    EXPECT_EQ(rows(sorted), rows(x_fastest));
+    EXPECT_NE(sorted.partner, x_fastest.partner) << "the search's order should differ";
+    for (const int threads : {2, 3}) {
+        for (const bool is_sorted : {false, true}) {
+            DemNeighbourList<3> split = configured(r.size(), is_sorted);
+            split.build(r, species, threads);
+            split.build(r, species, threads);  // the shares cut by the work, as in a run
+            const DemNeighbourList<3>& one = is_sorted ? sorted : x_fastest;
+            EXPECT_EQ(split.start, one.start) << threads << " threads, sorted " << is_sorted;
+            EXPECT_EQ(split.partner, one.partner) << threads << " threads, sorted " << is_sorted;
+        }
+    }
 }
 
 }  // namespace
