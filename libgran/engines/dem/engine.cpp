@@ -102,7 +102,6 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
     place_walls();
     const bool sorted = settings_.sort_interval > 0 && n >= settings_.min_particles_to_sort;
     list_.configure(box_, neighbour_cutoffs(), ns, n, history_, sorted);
-    if (threads_ > 1) list_.enable_by_partner();
     rebuild();
     reevaluate_forces();
 }

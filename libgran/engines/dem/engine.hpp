@@ -326,12 +326,16 @@ class DemEngine {
     // Threaded steps (threads_ > 1): thread t adds the contacts of rows pair_rows_[t] ..
     // pair_rows_[t + 1] - 1 of the list. Halo grains (halo_ 1, listed in halo_list_) are partners
     // of an earlier thread's rows: their contacts go to the per-entry slots, summed after the
-    // rows. Derived from the list, found again after each build or restore.
+    // rows; the entries of halo grain halo_list_[h] as partner are halo_entries_[halo_start_[h]]
+    // .. halo_entries_[halo_start_[h + 1] - 1], in increasing k. Derived from the list, found
+    // again after each build or restore.
     static constexpr int kMaxThreads = 256;
     int threads_ = 1;
     std::vector<std::size_t> pair_rows_;
     std::vector<std::uint8_t> halo_;
     std::vector<std::uint32_t> halo_list_;
+    std::vector<std::uint32_t> halo_start_, halo_entries_;
+    std::vector<std::uint32_t> halo_slot_, halo_fill_;  // split_pair_rows' scratch
     bool pair_split_stale_ = true;
     std::vector<Vec<D>> pair_force_;
     std::vector<AngVec<D>> pair_torque_i_, pair_torque_j_;

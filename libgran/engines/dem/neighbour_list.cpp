@@ -388,7 +388,6 @@ void DemNeighbourList<D>::build(const std::vector<Vec<D>>& r,
             break;
         }
     }
-    if (by_partner_on_) index_by_partner();
 }
 
 // The slots each thread searches (search_split_): shares expected to cost about the same. A
@@ -499,22 +498,6 @@ void DemNeighbourList<D>::find_rows(std::size_t n, int threads) {
                 partner[--cursor[std::size_t(p >> 32)]] = std::uint32_t(p);
         }
     });
-}
-
-// Counting sort of the entries by partner; filled in increasing k, so each partner's entries
-// stay in the order the serial force loop meets them.
-template <int D>
-void DemNeighbourList<D>::index_by_partner() {
-    const std::size_t n = start.empty() ? 0 : start.size() - 1;
-    partner_start.assign(n + 1, 0u);
-    for (std::uint32_t j : partner) ++partner_start[j + 1];
-    for (std::size_t j = 0; j < n; ++j) partner_start[j + 1] += partner_start[j];
-    by_partner.resize(partner.size());
-    std::vector<std::uint32_t>& next = fill_;
-    next.assign(partner_start.begin(), partner_start.end() - (n > 0 ? 1 : 0));
-    for (std::size_t k = 0; k < partner.size(); ++k) {
-        by_partner[next[partner[k]]++] = std::uint32_t(k);
-    }
 }
 
 template class DemNeighbourList<2>;

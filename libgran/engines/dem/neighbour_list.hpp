@@ -72,15 +72,6 @@ class DemNeighbourList {
     std::vector<std::uint32_t> owner;    // i of each entry (the row it belongs to)
     std::vector<std::uint8_t> touching;  // 1: in contact at the last force evaluation
     std::vector<Vec<D>> spring;          // tangential spring xi (history laws only)
-    // The entries seen from their partner, for force sums split over threads (enable_by_partner):
-    // the entries k with partner[k] == j are by_partner[partner_start[j]] ..
-    // by_partner[partner_start[j + 1] - 1], in increasing k. Rebuilt by each build.
-    std::vector<std::uint32_t> partner_start, by_partner;
-    void enable_by_partner() {
-        by_partner_on_ = true;
-        index_by_partner();
-    }
-
     // The entries in their order (the order forces are summed in) with their contact state, and
     // the grid of the last build; the rest is rebuilt by each build.
     void checkpoint(StateArchive& ar) {
@@ -98,7 +89,6 @@ class DemNeighbourList {
         ar.io(near_);
         ar.io(shift_);
         ar.io(cell_start_);
-        if (by_partner_on_) index_by_partner();  // derived from the entries just saved or loaded
     }
 
   private:
@@ -117,11 +107,8 @@ class DemNeighbourList {
     void find_rows(std::size_t n, int threads);
     void balance_search(std::size_t n, std::size_t parts);
 
-    void index_by_partner();
-
     bool history_ = false;
     bool sorted_ = false;  // builds bin in spatial_order()'s axis order
-    bool by_partner_on_ = false;
     std::size_t ns_ = 0;
     double widest_ = 0;
     std::size_t cap_ = 0;          // most cells
@@ -152,7 +139,6 @@ class DemNeighbourList {
     // pair tests and stencil visits (balance_search).
     std::vector<std::size_t> search_split_, search_cut_;
     std::vector<std::uint64_t> search_work_;
-    std::vector<std::uint32_t> fill_;  // index_by_partner(): next free slot per partner
     // bin() on several threads: per thread, its grains per cell, then its next slot per cell;
     // and the grains of each thread's share of the cells.
     std::vector<std::vector<std::uint32_t>> bin_count_;

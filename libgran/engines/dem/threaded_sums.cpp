@@ -16,38 +16,55 @@
 namespace gran {
 
 // The shares: consecutive rows holding about equal numbers of entries (cut at the first row
-// starting at or after each thread's equal split of the entries). A grain is a halo grain if its
-// first entry as partner (by_partner is in increasing k) comes before its share's first entry.
+// starting at or after each thread's equal split of the entries). A grain is a halo grain if it is
+// the partner of a row of an earlier share: an entry of share t whose partner lies beyond t's
+// rows. Each halo grain's entries as partner are then listed in increasing k (halo_start_,
+// halo_entries_): a counting sort over the few halo grains, not over every entry.
 template <int D>
 void DemEngine<D>::split_pair_rows() {
     const std::size_t n = p_.size(), parts = std::size_t(threads_);
+    const std::size_t entries = list_.entries();
     const std::uint32_t* start = list_.start.data();
-    const std::uint32_t* partner_start = list_.partner_start.data();
-    const std::uint32_t* by_partner = list_.by_partner.data();
+    const std::uint32_t* partner = list_.partner.data();
     pair_rows_.assign(parts + 1, 0);
     pair_rows_[parts] = n;
     for (std::size_t t = 1; t < parts; ++t) {
         std::size_t k0 = 0, k1 = 0;
-        chunk_bounds(list_.entries(), t, parts, k0, k1);
+        chunk_bounds(entries, t, parts, k0, k1);
         const std::size_t row = std::size_t(std::lower_bound(start, start + n, k0) - start);
         pair_rows_[t] = std::max(pair_rows_[t - 1], row);
     }
     halo_.assign(n, 0);
-    halo_list_.clear();
-    for (std::size_t t = 0; t < parts; ++t) {
-        const std::uint32_t first = start[pair_rows_[t]];
-        for (std::size_t x = pair_rows_[t]; x < pair_rows_[t + 1]; ++x) {
-            const std::uint32_t q = partner_start[x];
-            if (q < partner_start[x + 1] && by_partner[q] < first) {
-                halo_[x] = 1;
-                halo_list_.push_back(std::uint32_t(x));
-            }
+    std::uint8_t* halo = halo_.data();
+    for (std::size_t t = 0; t + 1 < parts; ++t) {
+        const std::size_t end = pair_rows_[t + 1];
+        for (std::uint32_t k = start[pair_rows_[t]]; k < start[end]; ++k) {
+            if (partner[k] >= end) halo[partner[k]] = 1;
         }
+    }
+    halo_list_.clear();
+    halo_slot_.resize(n);
+    for (std::size_t x = 0; x < n; ++x) {
+        if (!halo[x]) continue;
+        halo_slot_[x] = std::uint32_t(halo_list_.size());
+        halo_list_.push_back(std::uint32_t(x));
+    }
+    const std::size_t halos = halo_list_.size();
+    halo_start_.assign(halos + 1, 0);
+    for (std::size_t k = 0; k < entries; ++k) {
+        if (halo[partner[k]]) ++halo_start_[halo_slot_[partner[k]] + 1];
+    }
+    for (std::size_t h = 0; h < halos; ++h) halo_start_[h + 1] += halo_start_[h];
+    halo_entries_.resize(halo_start_[halos]);
+    halo_fill_.assign(halo_start_.begin(), halo_start_.end() - 1);
+    for (std::size_t k = 0; k < entries; ++k) {
+        if (halo[partner[k]])
+            halo_entries_[halo_fill_[halo_slot_[partner[k]]]++] = std::uint32_t(k);
     }
     pair_split_stale_ = false;
     if (stage_clock_.enabled()) {
         ++thread_shares_.splits;
-        thread_shares_.halo_grains += double(halo_list_.size());
+        thread_shares_.halo_grains += double(halos);
         thread_shares_.grains += double(n);
     }
 }
@@ -73,8 +90,8 @@ template <int D>
 void DemEngine<D>::sum_halo_pair_forces(std::size_t part, std::size_t parts) {
     const bool rot = p_.rotating();
     const std::uint32_t* start = list_.start.data();
-    const std::uint32_t* partner_start = list_.partner_start.data();
-    const std::uint32_t* by_partner = list_.by_partner.data();
+    const std::uint32_t* halo_start = halo_start_.data();
+    const std::uint32_t* halo_entries = halo_entries_.data();
     const std::uint8_t* touching = list_.touching.data();
     const Vec<D>* pf = pair_force_.data();
     const AngVec<D>* pti = pair_torque_i_.data();
@@ -86,8 +103,8 @@ void DemEngine<D>::sum_halo_pair_forces(std::size_t part, std::size_t parts) {
     for (std::size_t h = h0; h < h1; ++h) {
         const std::uint32_t x = halo_list_[h];
         Vec<D> fx = f[x];
-        for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
-            const std::uint32_t k = by_partner[q];
+        for (std::uint32_t q = halo_start[h]; q < halo_start[h + 1]; ++q) {
+            const std::uint32_t k = halo_entries[q];
             if (touching[k]) fx -= pf[k];
         }
         for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
@@ -96,8 +113,8 @@ void DemEngine<D>::sum_halo_pair_forces(std::size_t part, std::size_t parts) {
         f[x] = fx;
         if (!rot) continue;
         AngVec<D> tx = tau[x];
-        for (std::uint32_t q = partner_start[x]; q < partner_start[x + 1]; ++q) {
-            const std::uint32_t k = by_partner[q];
+        for (std::uint32_t q = halo_start[h]; q < halo_start[h + 1]; ++q) {
+            const std::uint32_t k = halo_entries[q];
             if (touching[k]) tx += ptj[k];
         }
         for (std::uint32_t k = start[x]; k < start[x + 1]; ++k) {
