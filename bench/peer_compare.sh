@@ -3,6 +3,8 @@
 # The caller sets: gran (path of gran_bench_dem), warmup (periods), out (output directory).
 # W (environment, default 9): the floor's (A omega)^2 / (g d); 0 is a bed settled on a static floor.
 W=${W:-9}
+# shellcheck source=same_pages.sh
+source "$(dirname "${BASH_SOURCE[0]}")/same_pages.sh"
 
 median() { sort -g | awk '{a[NR] = $1} END {if (NR % 2) print a[(NR + 1) / 2]; else print (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
 

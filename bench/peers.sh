@@ -11,6 +11,8 @@
 # Environment: EDMD (path), ROUNDS (3), EDMD_PHIS (0.1,0.2,0.3,0.4,0.5), EDMD_NS (10976,108000),
 # DEM_SIZES (100,1600,10000), SETTLED_SIZES (1600), SETTLED_WARMUP (10 periods of the W = 9 drive:
 # long enough for the poured grains to come to rest), OUT (a new directory under /tmp).
+# PEER_HUGE_PAGES (1: every code with glibc.malloc.hugetlb=1, as gran sets it for itself where the
+# kernel's THP mode is madvise; 0: huge pages off for all; bench/same_pages.sh).
 # Takes about 15 min with the defaults on this machine class; every run's output stays in $OUT.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)

@@ -15,7 +15,8 @@
 # -march=native; override with EDMD_CFLAGS). EDMD's rate is (collisions between the writes at the
 # end of equilibration and at the end) / (CPU time between them); gran's is gran_bench's timed loop
 # (CPU time). N must be 4 k^3 (EDMD's FCC). Each round runs gran then EDMD; the ratio printed last
-# is the median of the per-round ratios, with min-max.
+# is the median of the per-round ratios, with min-max. Both run with glibc.malloc.hugetlb=1
+# (bench/same_pages.sh; PEER_HUGE_PAGES=0: neither).
 set -euo pipefail
 if (($# < 1)); then
     sed -n '2,19p' "$0" >&2
@@ -31,6 +32,8 @@ gran=${GRAN_BENCH:-$root/build/gran_bench}
 out=${OUT:-$(mktemp -d /tmp/gran-vs-edmd.XXXXXX)}
 cflags=${EDMD_CFLAGS:--Wall -Ofast -funroll-loops -march=native}
 mkdir -p "$out"
+# shellcheck source=../same_pages.sh
+source "$here/../same_pages.sh"
 
 # The peer's source: a work tree, or the bare repository `fetch` gives.
 if [[ -f $edmd/Single/mdSingle.c ]]; then
@@ -111,6 +114,7 @@ run_gran() {
 
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo "# gran: $gran ($(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?')); EDMD Single $commit, gcc $cflags; outputs in $out"
+same_pages_line
 printf '%6s %7s %5s %12s %12s %7s %10s %10s %10s %6s\n' phi N round gran_coll/s edmd_coll/s ratio \
     gran_w/En edmd_w/En edmd_timed check
 summary=()

@@ -7,6 +7,7 @@
 # WARMUP_PERIODS (default 2), W (default 9; 0: the bed settled on a static floor),
 # PSTEPS_SMALL (default 2e7, N < 10^4), PSTEPS_LARGE (default 5e7),
 # OUT (default a new directory under /tmp: every run's full output is kept there).
+# PEER_HUGE_PAGES (default 1: both codes with glibc.malloc.hugetlb=1, bench/same_pages.sh; 0: neither).
 #
 # Runs gran and LAMMPS alternately, RUNS times each per size, serially (one process each,
 # OMP_NUM_THREADS=1), with equal warm-up and equal timed particle-steps, and reads each code's own
@@ -34,6 +35,7 @@ source "$here/../peer_compare.sh"
 
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo "# gran: $gran; LAMMPS: $($lmp -h | sed -n 2p | xargs); W = $W; outputs in $out"
+same_pages_line
 printf '%6s %3s %14s %14s %14s %14s %9s %9s\n' N run gran_cpu gran_wall lammps_cpu lammps_wall \
     ratio_cpu ratio_wall
 for n in ${sizes//,/ }; do
