@@ -17,10 +17,11 @@
 //  - Each entry carries the contact state of the pair (touching at the last force evaluation)
 //    and, when `history` is on, its tangential spring. Only the entries in contact are carried
 //    over to the next build (a pair in contact is closer than sigma_ij, hence in the new list).
-//  - On several threads, each bins its share of the particles (per-thread counts per cell, the
-//    same slots as one thread), then searches the cells whose particles fall in its share of the
-//    slots into its own segment; the segments in thread order are the one-thread sequence of pairs
-//    and the rows are filled as that sequence would fill them: the same entries in the same order.
+//  - On several threads, each bins its share of the particles into the slots one thread gives
+//    them (per-thread counts per cell: 4 bytes per cell and thread, at most max(8 N, 2^16)
+//    cells), then searches the cells whose particles fall in its share of the slots into its own
+//    segment; the segments in thread order are the one-thread sequence of pairs and the rows are
+//    filled as that sequence would fill them: the same entries in the same order.
 //  - No allocation in steady state: every buffer keeps its capacity across builds.
 #include <array>
 #include <cstddef>
