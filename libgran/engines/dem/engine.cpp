@@ -100,8 +100,7 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
     configure_neighbours();
     allocate_state();
     place_walls();
-    const bool sorted = settings_.sort_interval > 0 && n >= settings_.min_particles_to_sort;
-    list_.configure(box_, neighbour_cutoffs(), ns, n, history_, sorted);
+    list_.configure(box_, neighbour_cutoffs(), ns, n, history_, sorts());
     rebuild();
     reevaluate_forces();
 }
@@ -214,7 +213,7 @@ void DemEngine<D>::rebuild() {
 
 template <int D>
 bool DemEngine<D>::sort_due() const {
-    if (settings_.sort_interval == 0 || p_.size() < settings_.min_particles_to_sort) return false;
+    if (!sorts()) return false;
     return counters_.sorts == 0 || steps_ - steps_at_sort_ >= settings_.sort_interval;
 }
 

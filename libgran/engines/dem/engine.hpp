@@ -242,6 +242,11 @@ class DemEngine {
     void allocate_state();
     void place_walls();
     void rebuild();
+    // Whether this run sorts its grains at all (DemSettings::sort_interval,
+    // min_particles_to_sort), and whether a sort is due at this build.
+    bool sorts() const {
+        return settings_.sort_interval > 0 && p_.size() >= settings_.min_particles_to_sort;
+    }
     bool sort_due() const;
     void sort_particles();  // renumbers every per-particle array in the list's cell order
     void find_wall_candidates();
