@@ -5,6 +5,7 @@
 // any thread count. One thread calls the body directly: no runtime call, no outlined function,
 // the serial code exactly as written.
 #include <cstddef>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -32,6 +33,37 @@ void parallel_chunks(int threads, std::size_t n, Body&& body) {
             const auto part = static_cast<std::size_t>(omp_get_thread_num());
             std::size_t begin = 0, end = 0;
             chunk_bounds(n, part, parts, begin, end);
+            body(part, begin, end);
+        }
+        return;
+    }
+#else
+    (void)threads;
+#endif
+    body(std::size_t(0), std::size_t(0), n);
+}
+
+// body(part, begin, end) for the ranges [bounds[part], bounds[part + 1]) of a partition of
+// [0, bounds.back()), one per thread: for a stage that should touch the same elements on the
+// same threads as another stage, so that their cache lines stay in one core. If the runtime
+// grants another number of threads than the partition has ranges, equal chunks instead (a
+// schedule only, as for parallel_chunks). One thread, or a partition of one range: body(0, 0, n).
+template <class Body>
+void parallel_ranges(int threads, const std::vector<std::size_t>& bounds, Body&& body) {
+    const std::size_t n = bounds.empty() ? 0 : bounds.back();
+#ifdef _OPENMP
+    if (threads > 1 && bounds.size() > 2) {
+#pragma omp parallel num_threads(threads)
+        {
+            const auto parts = static_cast<std::size_t>(omp_get_num_threads());
+            const auto part = static_cast<std::size_t>(omp_get_thread_num());
+            std::size_t begin = 0, end = 0;
+            if (parts + 1 == bounds.size()) {
+                begin = bounds[part];
+                end = bounds[part + 1];
+            } else {
+                chunk_bounds(n, part, parts, begin, end);
+            }
             body(part, begin, end);
         }
         return;

@@ -295,9 +295,16 @@ void DemEngine<D>::open_step() {
     // Largest displacement since the last build, per thread (a maximum: the same for any split).
     std::array<double, kMaxThreads> moved2{};
     stage_clock_.start();
-    parallel_chunks(threads_, n, [this, &moved2](std::size_t part, std::size_t i0, std::size_t i1) {
+    const auto drift = [this, &moved2](std::size_t part, std::size_t i0, std::size_t i1) {
         moved2[part] = kick_drift<ClosingKick>(i0, i1);
-    });
+    };
+    // On several threads each thread drifts the grains whose rows it takes in the pair stage
+    // (pair_rows_, of the last list): the lines it writes here are those it reads there, and do
+    // not move between the cores (docs/performance.md, "The drift on the pair stage's rows").
+    if (threads_ > 1 && pair_rows_.size() == std::size_t(threads_) + 1 && pair_rows_.back() == n)
+        parallel_ranges(threads_, pair_rows_, drift);
+    else
+        parallel_chunks(threads_, n, drift);
     stage_clock_.lap(stage_times_.kicks_and_drift);
     ++steps_;
     ++counters_.steps;

@@ -339,6 +339,8 @@ class DemEngine {
     std::vector<std::size_t> pair_rows_;
     std::vector<std::uint8_t> halo_;
     std::vector<std::uint32_t> halo_list_;
+    std::vector<std::size_t>
+        halo_shares_;  // thread t sums halo_list_[halo_shares_[t]] .. (its rows)
     std::vector<std::uint32_t> halo_start_, halo_entries_;
     std::vector<std::uint32_t> halo_slot_, halo_fill_;  // split_pair_rows' scratch
     bool pair_split_stale_ = true;
@@ -346,6 +348,7 @@ class DemEngine {
     std::vector<AngVec<D>> pair_torque_i_, pair_torque_j_;
     std::vector<PairTally> tallies_;
     std::vector<std::vector<double>> wall_touched_;  // per thread: its wall contacts' normal forces
+    std::vector<std::size_t> wall_shares_;  // a wall's candidates cut at pair_rows_ (wall_forces)
     std::array<Wall, 2 * D> walls_{};
     std::array<double, 2 * D> wall_impulse_{};
     std::array<std::uint64_t, 2 * D> wall_hits_{};

@@ -252,6 +252,12 @@ template <class L, bool Rot>
 void DemEngine<D>::wall_forces(double dt_advance) {
     double worst = counters_.max_overlap;
     if (wall_candidates_stale_) find_wall_candidates();
+    // On several threads, once the pair stage has its rows: each thread takes the candidates in
+    // its rows, whatever their number, so that it writes the forces of its own grains only (a
+    // wall pass on one thread wrote the other thread's lines, which its drift then fetched back
+    // across the cores: docs/performance.md, "The drift on the pair stage's rows").
+    const bool on_rows = threads_ > 1 && pair_rows_.size() == std::size_t(threads_) + 1 &&
+                         pair_rows_.back() == p_.size();
     for (std::size_t c = 0; c < 2 * D; ++c) {
         if (!walls_[c].present) continue;
         double impulse = 0;
@@ -263,7 +269,8 @@ void DemEngine<D>::wall_forces(double dt_advance) {
         // drift: the floor of the settled bed of 10^4 grains (about 2500 contacts) gains
         // 2.3x from a second thread (docs/performance.md, "The wall pass split").
         const std::size_t per = std::max<std::size_t>(settings_.min_particles_per_thread / 4, 1);
-        const int wall_threads = int(std::min<std::size_t>(std::size_t(threads_), m / per));
+        const int wall_threads =
+            on_rows ? threads_ : int(std::min<std::size_t>(std::size_t(threads_), m / per));
         if (wall_threads <= 1) {
             wall_range<L, Rot>(dt_advance, c, 0, m, impulse, formed, worst, nullptr);
         } else {
@@ -271,13 +278,22 @@ void DemEngine<D>::wall_forces(double dt_advance) {
             for (std::vector<double>& part : wall_touched_) part.clear();  // parts given no thread
             std::array<double, kMaxThreads> worst_of{};
             std::array<std::uint64_t, kMaxThreads> formed_of{};
-            parallel_chunks(wall_threads, m,
-                            [&, this](std::size_t part, std::size_t k0, std::size_t k1) {
-                                double unused = 0;
-                                worst_of[part] = worst;
-                                wall_range<L, Rot>(dt_advance, c, k0, k1, unused, formed_of[part],
-                                                   worst_of[part], &wall_touched_[part]);
-                            });
+            const auto share = [&, this](std::size_t part, std::size_t k0, std::size_t k1) {
+                double unused = 0;
+                worst_of[part] = worst;
+                wall_range<L, Rot>(dt_advance, c, k0, k1, unused, formed_of[part], worst_of[part],
+                                   &wall_touched_[part]);
+            };
+            if (on_rows) {  // the candidates are in increasing index: cut at the rows' bounds
+                const std::uint32_t* cand = wall_candidates_[c].data();
+                wall_shares_.resize(pair_rows_.size());
+                for (std::size_t t = 0; t < pair_rows_.size(); ++t)
+                    wall_shares_[t] = std::size_t(
+                        std::lower_bound(cand, cand + m, std::uint32_t(pair_rows_[t])) - cand);
+                parallel_ranges(threads_, wall_shares_, share);
+            } else {
+                parallel_chunks(wall_threads, m, share);
+            }
             for (std::size_t part = 0; part < wall_touched_.size(); ++part) {
                 worst = worst_of[part] > worst ? worst_of[part] : worst;
                 formed += formed_of[part];

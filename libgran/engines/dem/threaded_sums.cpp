@@ -50,6 +50,13 @@ void DemEngine<D>::split_pair_rows() {
         halo_list_.push_back(std::uint32_t(x));
     }
     const std::size_t halos = halo_list_.size();
+    // Each halo grain summed by the thread whose rows hold it (the thread that drifts it and
+    // adds its own row's contacts), so that its lines stay in that thread's core.
+    halo_shares_.resize(parts + 1);
+    for (std::size_t t = 0; t <= parts; ++t)
+        halo_shares_[t] = std::size_t(
+            std::lower_bound(halo_list_.begin(), halo_list_.end(), std::uint32_t(pair_rows_[t])) -
+            halo_list_.begin());
     halo_start_.assign(halos + 1, 0);
     for (std::size_t k = 0; k < entries; ++k) {
         if (halo[partner[k]]) ++halo_start_[halo_slot_[partner[k]] + 1];
@@ -99,7 +106,12 @@ void DemEngine<D>::sum_halo_pair_forces(std::size_t part, std::size_t parts) {
     Vec<D>* f = f_.data();
     AngVec<D>* tau = tau_.data();
     std::size_t h0 = 0, h1 = 0;
-    chunk_bounds(halo_list_.size(), part, parts, h0, h1);
+    if (halo_shares_.size() == parts + 1) {
+        h0 = halo_shares_[part];
+        h1 = halo_shares_[part + 1];
+    } else {
+        chunk_bounds(halo_list_.size(), part, parts, h0, h1);
+    }
     for (std::size_t h = h0; h < h1; ++h) {
         const std::uint32_t x = halo_list_[h];
         Vec<D> fx = f[x];
