@@ -244,9 +244,9 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
 // Wall by wall, so each particle's wall forces are added in wall order; several threads split a
 // wall's candidates (wall_candidates_, in increasing index) into consecutive shares, which
 // changes no bit of any particle's force. The normal forces that make the wall's impulse are
-// summed afterwards in candidate order (one thread: as they come). Splitting the candidates,
-// not the particles: after the spatial sort the grains near the floor all have low indices, and
-// a split by index gave one thread the whole floor.
+// summed afterwards in candidate order (one thread: as they come). The candidates are cut at
+// the pair loop's rows once it has them (each thread then writes its own grains' forces), and
+// in equal shares before.
 template <int D>
 template <class L, bool Rot>
 void DemEngine<D>::wall_forces(double dt_advance) {
