@@ -10,8 +10,9 @@
 //   registers (the arrays of 3-vectors read as 3N doubles). Every component gets the same
 //   operations in the same order as in the per-grain form (no fused multiply-add on the
 //   baseline x86-64), so the two give the same bits (DemDrift.* pins that down). It takes
-//   about half the instructions per grain: the per-grain form spends a third of its
-//   instructions on shuffling a 3-vector into a 2-lane and a 1-lane register and back.
+//   about 70 instructions per grain against about 120: the per-grain form splits each
+//   3-vector into a 2-lane and a 1-lane register and back, and passes the coordinates through
+//   the stack for the wrap (docs/performance.md, "The DEM drift two grains at a time").
 #include <emmintrin.h>
 
 #include <algorithm>
