@@ -269,8 +269,9 @@ void DemEngine<D>::wall_forces(double dt_advance) {
         // drift: the floor of the settled bed of 10^4 grains (about 2500 contacts) gains
         // 2.3x from a second thread (docs/performance.md, "The wall pass split").
         const std::size_t per = std::max<std::size_t>(settings_.min_particles_per_thread / 4, 1);
-        const int wall_threads =
-            on_rows ? threads_ : int(std::min<std::size_t>(std::size_t(threads_), m / per));
+        const int wall_threads = on_rows && m > 0  // a wall no grain can reach: no region
+                                     ? threads_
+                                     : int(std::min<std::size_t>(std::size_t(threads_), m / per));
         if (wall_threads <= 1) {
             wall_range<L, Rot>(dt_advance, c, 0, m, impulse, formed, worst, nullptr);
         } else {
