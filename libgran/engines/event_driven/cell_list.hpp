@@ -151,6 +151,19 @@ class CellList {
         return n;
     }
     std::int32_t cell_of(std::uint32_t i) const { return cell_of_[i]; }
+    // True when no two points of i's neighbourhood (its cell and the adjacent ones) are
+    // separated through a periodic boundary: along every periodic axis i's cell is neither the
+    // first nor the last and there are at least 5 cells. Any two such points are then at most
+    // 2 widths <= 0.4 periods apart, so Box::separation returns their plain difference and a
+    // scan can skip the minimum image (about a third of a pair test's instructions in 3D).
+    bool interior(std::uint32_t i) const {
+        bool inside = true;
+        for (int a = 0; a < D; ++a) {
+            const std::int32_t c = cc_[i][a], nc = ncell_[a];
+            inside &= !periodic_[a] || (nc >= 5 && c >= 1 && c <= nc - 2);
+        }
+        return inside;
+    }
 
     // Copies the ids of the particles in the given cells to candidates() (i itself included);
     // returns how many.

@@ -89,14 +89,16 @@ void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells
     if (!cells_.image_offsets().empty()) {
         scan_gathered_images(i, n, best_out, partner_out);
     } else if (gravity_) {
-        scan_gathered<true>(i, cells_.candidates(), n, best_out, partner_out);
+        scan_gathered<true, true>(i, cells_.candidates(), n, best_out, partner_out);
+    } else if (cells_.interior(i)) {
+        scan_gathered<false, false>(i, cells_.candidates(), n, best_out, partner_out);
     } else {
-        scan_gathered<false>(i, cells_.candidates(), n, best_out, partner_out);
+        scan_gathered<false, true>(i, cells_.candidates(), n, best_out, partner_out);
     }
 }
 
 template <int D>
-template <bool Gravity>
+template <bool Gravity, bool Wraps>
 void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* candidates,
                                          std::size_t n, double& best_out,
                                          std::int32_t& partner_out) const {
@@ -128,7 +130,7 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* c
     // Without gravity, two candidates per step (pair_collision_times_two): the same numbers as
     // the one-candidate loop below, which takes the last odd candidate.
     std::size_t first = 0;
-    auto scan_two = [&](auto contact) {
+    auto scan_two = [&](auto contact) __attribute__((always_inline)) {
         __m128d ri2[D], vi2[D];
         for (int k = 0; k < D; ++k) {
             ri2[std::size_t(k)] = _mm_set1_pd(ri[k]);
@@ -144,7 +146,8 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* c
                 const __m128d vj = _mm_set_pd(v[j1][int(k)], v[j0][int(k)]);
                 const __m128d rj =
                     _mm_add_pd(_mm_set_pd(r[j1][int(k)], r[j0][int(k)]), _mm_mul_pd(vj, dt));
-                dr[k] = image(_mm_sub_pd(ri2[k], rj), int(k));  // Box::separation, two lanes
+                const __m128d d = _mm_sub_pd(ri2[k], rj);
+                dr[k] = Wraps ? image(d, int(k)) : d;  // Box::separation, two lanes
                 dv[k] = _mm_sub_pd(vi2[k], vj);
             }
             const __m128d t =
@@ -160,7 +163,7 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* c
             }
         }
     };
-    auto scan = [&](auto contact) {
+    auto scan = [&](auto contact) __attribute__((always_inline)) {
         if constexpr (!Gravity) scan_two(contact);
         for (std::size_t m = first; m < n; ++m) {
             const std::uint32_t j = buf[m];
@@ -175,7 +178,7 @@ void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* c
                 rj = r[j] + v[j] * dt;
                 vj = v[j];
             }
-            const Vec<D> dr = box_.separation(ri, rj);
+            const Vec<D> dr = Wraps ? box_.separation(ri, rj) : Vec<D>(ri - rj);
             const Vec<D> dv = vi - vj;
             const double t = pair_collision_time_branchless<D>(dr, dv, contact(j));
             if (t < best) {
@@ -245,7 +248,14 @@ template <int D>
 void EventDrivenEngine<D>::predict_in_shell(std::uint32_t i) {
     double best = kInf;
     std::int32_t partner = -1;
-    scan_gathered<false>(i, shells_.list(i), shells_.size(i), best, partner);
+    const Vec<D>& c = shells_.centre(i);
+    bool inside = true;
+    for (int a = 0; a < D; ++a) inside &= c[a] >= shell_lo_[a] && c[a] <= shell_hi_[a];
+    if (inside) {
+        scan_gathered<false, false>(i, shells_.list(i), shells_.size(i), best, partner);
+    } else {
+        scan_gathered<false, true>(i, shells_.list(i), shells_.size(i), best, partner);
+    }
     schedule(i, best, partner);
 }
 

@@ -198,7 +198,9 @@ class EventDrivenEngine {
     // Earliest collision of i with the candidates of the given cells, if before best.
     void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
                     std::int32_t& partner);
-    template <bool Gravity>
+    // Wraps: the candidates may lie across a periodic boundary (false only when they cannot,
+    // CellList::interior: the minimum image is then the plain difference, bit for bit).
+    template <bool Gravity, bool Wraps>
     void scan_gathered(std::uint32_t i, const std::uint32_t* candidates, std::size_t n,
                        double& best, std::int32_t& partner) const;
     // One-cell periodic axes: every image of each candidate (CellList::image_offsets()).
@@ -242,6 +244,7 @@ class EventDrivenEngine {
     // of its list, the shell exit, walls and periodic wraps among its next events, and the two
     // events of their own.
     void set_up_pair_search();
+    void set_shell_bounds();
     void predict_in_shell(std::uint32_t i);
     void schedule_in_shell(std::uint32_t i, Earliest& next);
     void leave_shell(std::uint32_t i);
@@ -284,6 +287,9 @@ class EventDrivenEngine {
     CellList<D> cells_;
     bool shells_on_ = false;
     NeighbourShells<D> shells_;
+    // Where a shell's centre must lie, per axis, for its scan to skip the minimum image
+    // (set_shell_bounds; derived from the box, the radii and the skin, so not archived).
+    Vec<D> shell_lo_ = Vec<D>::Zero(), shell_hi_ = Vec<D>::Zero();
 
     PairCounts pair_collisions_;
     CollisionSink<D>* sink_ = nullptr;

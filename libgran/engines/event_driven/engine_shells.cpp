@@ -43,6 +43,7 @@ void EventDrivenEngine<D>::set_up_pair_search() {
         if (cells_.image_offsets().empty()) {
             shells_on_ = true;
             shells_.build(box_, skin * dmax, p_.r, cells_, sizes());
+            set_shell_bounds();
             return;
         }
         // A periodic axis shorter than 4 cells would need images of the lists' partners.
@@ -53,6 +54,29 @@ void EventDrivenEngine<D>::set_up_pair_search() {
         }
     }
     cells_.build(box_, dmax, p_.r, settings_.cell_layout);
+}
+
+template <int D>
+void EventDrivenEngine<D>::set_shell_bounds() {
+    // A list holds the particles whose centres lie within reach = (R_i + R_j + skin)(1 + 1e-9)
+    // of i's centre, and each particle stays within skin / 2 of its own centre. With i's centre
+    // at least m = 2 (R_max + skin) from both faces of a periodic axis, every member's position
+    // is inside the box (not wrapped) and within reach + skin < m <= L / 4 of i's: the minimum
+    // image is then the plain difference, and predict_in_shell skips it. Shorter axes never do.
+    const double m = largest_diameter() + 2.0 * shells_.skin();
+    for (int a = 0; a < D; ++a) {
+        const double length = box_.length[a];
+        if (!box_.periodic[a]) {
+            shell_lo_[a] = -kInf;
+            shell_hi_[a] = kInf;
+        } else if (length >= 4.0 * m) {
+            shell_lo_[a] = m;
+            shell_hi_[a] = length - m;
+        } else {
+            shell_lo_[a] = kInf;
+            shell_hi_[a] = -kInf;
+        }
+    }
 }
 
 template <int D>
@@ -111,6 +135,7 @@ void EventDrivenEngine<D>::wrap(std::uint32_t i, int code) {
 
 #define GRAN_INSTANTIATE(D)                                                          \
     template void EventDrivenEngine<D>::set_up_pair_search();                        \
+    template void EventDrivenEngine<D>::set_shell_bounds();                          \
     template void EventDrivenEngine<D>::schedule_in_shell(std::uint32_t, Earliest&); \
     template void EventDrivenEngine<D>::leave_shell(std::uint32_t);                  \
     template void EventDrivenEngine<D>::wrap(std::uint32_t, int);

@@ -78,7 +78,10 @@ void EventDrivenEngine<D>::checkpoint(StateArchive& ar) {
     ar.io(events_);
     ar.io(cells_);
     ar.io(shells_on_);
-    if (shells_on_) ar.io(shells_);
+    if (shells_on_) {
+        ar.io(shells_);
+        set_shell_bounds();
+    }
     ar.io(pair_collisions_);
     ar.io(wall_hit_count_);
     ar.io(wall_impulse_);

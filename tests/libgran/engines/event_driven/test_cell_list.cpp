@@ -171,5 +171,49 @@ TEST(CellList, ADenseGridUsesBlocksUpToTheSizeWhereLinkedListsBecomeFaster) {
     }
 }
 
+// CellList::interior lets a scan skip the minimum image: for every interior particle, each
+// particle of its neighbourhood is separated from it by the plain difference, bit for bit. The
+// first and last cells of a periodic axis are never interior (there the neighbourhood wraps and
+// some pair needs the image), nor is any cell of a periodic axis with fewer than 5 cells; a
+// bounded axis does not restrict it.
+TEST(CellList, InteriorParticlesMeetTheirWholeNeighbourhoodWithoutAPeriodicImage) {
+    for (const int cells_per_axis : {4, 5, 8}) {
+        Box<3> box;
+        box.length = Vec<3>::Constant(cells_per_axis);
+        box.periodic = {true, true, false};
+        std::mt19937 rng(31);
+        std::uniform_real_distribution<double> u(0.0, cells_per_axis);
+        std::vector<Vec<3>> r;
+        for (int k = 0; k < 40 * cells_per_axis * cells_per_axis * cells_per_axis; ++k) {
+            r.push_back(Vec<3>(u(rng), u(rng), u(rng)));
+        }
+        CellList<3> cells;
+        cells.build(box, 1.0, r);
+        ASSERT_EQ(cells.cells(0), cells_per_axis);
+        std::size_t inside = 0, wrapping_outside = 0;
+        for (std::uint32_t i = 0; i < r.size(); ++i) {
+            bool expected = cells_per_axis >= 5;
+            for (int a = 0; a < 2; ++a) {
+                const int c = cells.coordinate(i, a);
+                expected = expected && c >= 1 && c <= cells_per_axis - 2;
+            }
+            ASSERT_EQ(cells.interior(i), expected) << "particle " << i;
+            bool wraps = false;
+            for (std::uint32_t j : scanned(cells, i)) {
+                const Vec<3> plain = r[i] - r[j];
+                if (cells.interior(i)) {
+                    ASSERT_EQ(box.separation(r[i], r[j]), plain) << i << " and " << j;
+                }
+                wraps = wraps || box.separation(r[i], r[j]) != plain;
+            }
+            inside += cells.interior(i);
+            wrapping_outside += !cells.interior(i) && wraps;
+        }
+        // The check above ran, and the excluded cells are the ones that needed excluding.
+        EXPECT_EQ(inside == 0, cells_per_axis == 4);
+        EXPECT_GT(wrapping_outside, r.size() / 4);
+    }
+}
+
 }  // namespace
 }  // namespace gran
