@@ -16,7 +16,10 @@
 # end of equilibration and at the end) / (CPU time between them); gran's is gran_bench's timed loop
 # (CPU time). N must be 4 k^3 (EDMD's FCC). Each round runs gran then EDMD; the ratio printed last
 # is the median of the per-round ratios, with min-max. Both run with glibc.malloc.hugetlb=1
-# (bench/same_pages.sh; PEER_HUGE_PAGES=0: neither).
+# (bench/same_pages.sh; PEER_HUGE_PAGES=0: neither). AT_ONCE=1: each round runs the two at the
+# same time, one per core (taskset), the cores swapped from round to round (use an even number of
+# rounds): on a host whose two cores run at different speeds, and change speed, this compares the
+# codes on the same cores at the same moment (docs/performance.md, "Which core").
 set -euo pipefail
 if (($# < 1)); then
     sed -n '2,19p' "$0" >&2
@@ -26,6 +29,7 @@ edmd=$1
 rounds=${2:-3}
 phis=${3:-0.1,0.2,0.3,0.4,0.5}
 ns=${4:-10976,108000}
+at_once=${AT_ONCE:-0}
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 gran=${GRAN_BENCH:-$root/build/gran_bench}
@@ -123,8 +127,18 @@ for n in ${ns//,/ }; do
         bin=$(build_edmd "$phi" "$n")
         : >"$out/ratios_phi${phi}_N$n.txt"
         for ((r = 1; r <= rounds; ++r)); do
-            read -r gr gw check < <(run_gran "$phi" "$n" "$r")
-            read -r er ec ew < <(run_edmd "$bin" "$phi" "$n" "$r")
+            if [[ $at_once == 1 ]]; then
+                # Both at once, one per core, the cores swapped every round.
+                if ((r % 2)); then cg=0 ce=1; else cg=1 ce=0; fi
+                (taskset -p -c "$cg" "$BASHPID" >/dev/null && run_gran "$phi" "$n" "$r") >"$out/g.$r" &
+                (taskset -p -c "$ce" "$BASHPID" >/dev/null && run_edmd "$bin" "$phi" "$n" "$r") >"$out/e.$r" &
+                wait
+                read -r gr gw check <"$out/g.$r"
+                read -r er ec ew <"$out/e.$r"
+            else
+                read -r gr gw check < <(run_gran "$phi" "$n" "$r")
+                read -r er ec ew < <(run_edmd "$bin" "$phi" "$n" "$r")
+            fi
             ratio=$(awk -v a="$gr" -v b="$er" 'BEGIN {printf "%.3f", a / b}')
             echo "$ratio" >>"$out/ratios_phi${phi}_N$n.txt"
             printf '%6s %7s %5s %12.4g %12.4g %7s %10s %10s %10s %6s\n' "$phi" "$n" "$r" "$gr" "$er" \
@@ -134,5 +148,6 @@ for n in ${ns//,/ }; do
         summary+=("$(printf '%6s %7s   %s [%s-%s]' "$phi" "$n" "$(median <"$f")" "$(sort -g "$f" | head -1)" "$(sort -g "$f" | tail -1)")")
     done
 done
-echo "# gran / EDMD, collisions per CPU second, median of $rounds alternating rounds [min-max]"
+if [[ $at_once == 1 ]]; then how="rounds at once (cores swapped)"; else how="alternating rounds"; fi
+echo "# gran / EDMD, collisions per CPU second, median of $rounds $how [min-max]"
 printf '%s\n' "${summary[@]}"
