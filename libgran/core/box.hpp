@@ -47,14 +47,14 @@ struct MinimumImageTwo {
             minus_half[k] = _mm_set1_pd(-h);
         }
     }
-    // d: the two pairs' a - b along axis k.
+    // d: the two pairs' a - b along axis k. The length, masked, is subtracted where d > L / 2
+    // and added where d < -L / 2: d - L and d + L there as in separation(), and elsewhere
+    // d - 0 + 0, which is d (a separation is never -0, the one value that would turn +0).
     __m128d operator()(__m128d d, int k) const {
         if (!periodic[k]) return d;
-        const __m128d up = _mm_cmpgt_pd(d, half[k]);
-        const __m128d down = _mm_cmplt_pd(d, minus_half[k]);
-        const __m128d moved = _mm_or_pd(_mm_and_pd(up, _mm_sub_pd(d, length[k])),
-                                        _mm_and_pd(down, _mm_add_pd(d, length[k])));
-        return _mm_or_pd(moved, _mm_andnot_pd(_mm_or_pd(up, down), d));
+        const __m128d up = _mm_and_pd(_mm_cmpgt_pd(d, half[k]), length[k]);
+        const __m128d down = _mm_and_pd(_mm_cmplt_pd(d, minus_half[k]), length[k]);
+        return _mm_add_pd(_mm_sub_pd(d, up), down);
     }
     __m128d length[D], half[D], minus_half[D];
     bool periodic[D];
