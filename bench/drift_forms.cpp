@@ -3,8 +3,8 @@
 // kick_drift_pairs_3d (two grains per block in three SSE2 registers). First checks that both
 // give the same bits over 50 steps with new forces each step (periodic wraps and an odd count
 // included), then prints the best of five rounds in nanoseconds per grain, rotating or not.
-// g++ -std=c++20 -O3 -fno-math-errno -I. -I/usr/include/eigen3 bench/drift_forms.cpp -o /tmp/df
-// /tmp/df 10000 3000     (N grains, steps per round)
+// g++ -std=c++20 -O3 -fno-math-errno -I. -I/usr/include/eigen3 bench/drift_forms.cpp -o /tmp/df_bin
+// /tmp/df_bin 10000 3000     (N grains, steps per round)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "bench/drift_grains.hpp"
 #include "libgran/engines/dem/drift.hpp"
 
 namespace {
@@ -20,59 +21,28 @@ namespace {
 using gran::Vec;
 using V3 = gran::Vec<3>;
 
-struct Grains {
-    std::vector<V3> r, v, v_pred, f, disp, w, w_pred, tau;
-    std::vector<std::array<std::int32_t, 3>> image;
-    std::vector<std::uint32_t> species;
-    gran::DriftArrays<3> arrays(const double* inv_mass, const double* inv_inertia) {
-        return {r.data(),       v.data(), v_pred.data(), f.data(),      disp.data(), image.data(),
-                species.data(), inv_mass, w.data(),      w_pred.data(), tau.data(),  inv_inertia};
-    }
-};
+using drift_bench::Grains;
+using drift_bench::grains;
+using drift_bench::same;
+
+gran::DriftArrays<3> arrays(Grains& s, const double* inv_mass, const double* inv_inertia) {
+    return {s.r.data(),    s.v.data(),      s.v_pred.data(),  s.f.data(),
+            s.disp.data(), s.image.data(),  s.species.data(), inv_mass,
+            s.w.data(),    s.w_pred.data(), s.tau.data(),     inv_inertia};
+}
 
 constexpr double kInvMass[2] = {1.3, 0.7}, kInvInertia[2] = {3.1, 2.2};
 const gran::DriftStep<3> kStep{1e-3, V3(0, 0, -1), {50, 50, 0}};  // the vibrated bed's box
 
-Grains grains(std::size_t n) {
-    Grains s;
-    std::mt19937_64 rng(1);
-    std::uniform_real_distribution<double> u(-1, 1);
-    const auto any = [&] { return V3(u(rng), u(rng), u(rng)); };
-    for (std::size_t i = 0; i < n; ++i) {
-        s.r.push_back(V3(25 + 24.999 * u(rng), 25 + 24.999 * u(rng), 5 + u(rng)));
-        s.v.push_back(30 * any());  // fast enough that some grains cross the periodic sides
-        s.v_pred.push_back(any());
-        s.f.push_back(any());
-        s.disp.push_back(0.01 * any());
-        s.w.push_back(any());
-        s.w_pred.push_back(any());
-        s.tau.push_back(any());
-        s.image.push_back({0, 0, 0});
-        s.species.push_back(std::uint32_t(rng() % 2));
-    }
-    return s;
-}
-
-template <class T>
-bool same(const std::vector<T>& a, const std::vector<T>& b) {
-    return std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
-bool same(const Grains& a, const Grains& b) {
-    return same(a.r, b.r) && same(a.v, b.v) && same(a.v_pred, b.v_pred) && same(a.f, b.f) &&
-           same(a.disp, b.disp) && same(a.w, b.w) && same(a.w_pred, b.w_pred) &&
-           same(a.tau, b.tau) && same(a.image, b.image);
-}
-
 template <bool Closing, bool Rot>
 __attribute__((noinline)) double per_grain(Grains& s) {
-    return gran::kick_drift_per_grain<3, Closing>(s.arrays(kInvMass, kInvInertia), kStep, Rot, 0,
+    return gran::kick_drift_per_grain<3, Closing>(arrays(s, kInvMass, kInvInertia), kStep, Rot, 0,
                                                   s.r.size());
 }
 
 template <bool Closing, bool Rot>
 __attribute__((noinline)) double pairs(Grains& s) {
-    return gran::kick_drift_pairs_3d<Closing, Rot>(s.arrays(kInvMass, kInvInertia), kStep, 0,
+    return gran::kick_drift_pairs_3d<Closing, Rot>(arrays(s, kInvMass, kInvInertia), kStep, 0,
                                                    s.r.size());
 }
 
@@ -89,12 +59,8 @@ int main(int argc, char** argv) {
         Grains a = grains(n + 1), b = a;
         double ma = 0, mb = 0;
         for (int t = 0; t < 50; ++t) {
-            for (Grains* s : {&a, &b}) {
-                for (std::size_t i = 0; i <= n; ++i) {
-                    s->f[i] = V3(double(i % 7) - 3, t % 5 - 2.0, 0.3 * double(i));
-                    s->tau[i] = V3(1, t, 0.1 * double(i));
-                }
-            }
+            drift_bench::push(a, t);
+            drift_bench::push(b, t);
             ma = std::max(ma, forms[2 * (1 - spins)](a));
             mb = std::max(mb, forms[2 * (1 - spins) + 1](b));
         }

@@ -7,9 +7,8 @@
 // operations in the same order (no FMA), so all three give the same bits, which the first line
 // checks. Prints the best of five rounds of each, in nanoseconds per grain (docs/performance.md,
 // "Measured with clocks").
-// g++ -std=c++20 -O3 -fno-math-errno -I/usr/include/eigen3 bench/drift_widths.cpp -o /tmp/dw
-// /tmp/dw 10000 3000     (N grains, steps per round)
-#include <Eigen/Dense>
+// g++ -std=c++20 -O3 -fno-math-errno -I. -I/usr/include/eigen3 bench/drift_widths.cpp -o /tmp/dw_bin
+// /tmp/dw_bin 10000 3000     (N grains, steps per round)
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -20,15 +19,15 @@
 #include <random>
 #include <vector>
 
+#include "bench/drift_grains.hpp"
+
 namespace {
 
-using V3 = Eigen::Vector3d;
+using V3 = drift_bench::V3;
 
-struct Grains {
-    std::vector<V3> r, v, v_pred, f, disp, w, w_pred, tau;
-    std::vector<std::array<std::int32_t, 3>> image;
-    std::vector<std::uint32_t> species;
-};
+using drift_bench::Grains;
+using drift_bench::grains;
+using drift_bench::same;
 
 constexpr double kInvMass[2] = {1.3, 0.7}, kInvInertia[2] = {3.1, 2.2};
 constexpr double kPeriod[3] = {50, 50, 0};  // periodic x and y, bounded z: the vibrated bed
@@ -177,37 +176,6 @@ __attribute__((noinline, target("avx2"))) double avx2(Grains& s, std::size_t i0,
     return done < i1 ? std::max(moved2, reference(s, done, i1)) : moved2;
 }
 
-Grains grains(std::size_t n) {
-    Grains s;
-    std::mt19937_64 rng(1);
-    std::uniform_real_distribution<double> u(-1, 1);
-    const auto any = [&] { return V3(u(rng), u(rng), u(rng)); };
-    for (std::size_t i = 0; i < n; ++i) {
-        s.r.push_back(V3(25 + 24.999 * u(rng), 25 + 24.999 * u(rng), 5 + u(rng)));
-        s.v.push_back(30 * any());  // fast enough that some grains cross the periodic sides
-        s.v_pred.push_back(any());
-        s.f.push_back(any());
-        s.disp.push_back(0.01 * any());
-        s.w.push_back(any());
-        s.w_pred.push_back(any());
-        s.tau.push_back(any());
-        s.image.push_back({0, 0, 0});
-        s.species.push_back(std::uint32_t(rng() % 2));
-    }
-    return s;
-}
-
-template <class T>
-bool same(const std::vector<T>& a, const std::vector<T>& b) {
-    return std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
-bool same(const Grains& a, const Grains& b) {
-    return same(a.r, b.r) && same(a.v, b.v) && same(a.v_pred, b.v_pred) && same(a.f, b.f) &&
-           same(a.disp, b.disp) && same(a.w, b.w) && same(a.w_pred, b.w_pred) &&
-           same(a.tau, b.tau) && same(a.image, b.image);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -222,10 +190,7 @@ int main(int argc, char** argv) {
         std::array<double, 3> moved2{};
         for (int t = 0; t < 50; ++t) {
             for (std::size_t k = 0; k < 3; ++k) {
-                for (std::size_t i = 0; i <= n; ++i) {
-                    s[k].f[i] = V3(double(i % 7) - 3, t % 5 - 2.0, 0.3 * double(i));
-                    s[k].tau[i] = V3(1, t, 0.1 * double(i));
-                }
+                drift_bench::push(s[k], t);
                 moved2[k] = std::max(moved2[k], drifts[k](s[k], 0, n + 1));
             }
         }

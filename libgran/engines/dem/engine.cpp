@@ -301,7 +301,7 @@ void DemEngine<D>::open_step() {
     // On several threads each thread drifts the grains whose rows it takes in the pair stage
     // (pair_rows_, of the last list): the lines it writes here are those it reads there, and do
     // not move between the cores (docs/performance.md, "The drift on the pair stage's rows").
-    if (threads_ > 1 && pair_rows_.size() == std::size_t(threads_) + 1 && pair_rows_.back() == n)
+    if (rows_split())
         parallel_ranges(threads_, pair_rows_, drift);
     else
         parallel_chunks(threads_, n, drift);

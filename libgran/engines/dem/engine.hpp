@@ -337,6 +337,13 @@ class DemEngine {
     static constexpr int kMaxThreads = 256;
     int threads_ = 1;
     std::vector<std::size_t> pair_rows_;
+    // Whether pair_rows_ cut all the grains into one range per thread: the stages that follow
+    // the pair loop's rows (drift, walls) take them then, and equal chunks before the first
+    // split or after a change of the thread count.
+    bool rows_split() const {
+        return threads_ > 1 && pair_rows_.size() == std::size_t(threads_) + 1 &&
+               pair_rows_.back() == p_.size();
+    }
     std::vector<std::uint8_t> halo_;
     std::vector<std::uint32_t> halo_list_;
     std::vector<std::size_t>

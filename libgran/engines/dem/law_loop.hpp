@@ -256,8 +256,7 @@ void DemEngine<D>::wall_forces(double dt_advance) {
     // its rows, whatever their number, so that it writes the forces of its own grains only (a
     // wall pass on one thread wrote the other thread's lines, which its drift then fetched back
     // across the cores: docs/performance.md, "The drift on the pair stage's rows").
-    const bool on_rows = threads_ > 1 && pair_rows_.size() == std::size_t(threads_) + 1 &&
-                         pair_rows_.back() == p_.size();
+    const bool on_rows = rows_split();
     for (std::size_t c = 0; c < 2 * D; ++c) {
         if (!walls_[c].present) continue;
         double impulse = 0;
