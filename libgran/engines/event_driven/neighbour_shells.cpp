@@ -52,14 +52,52 @@ void NeighbourShells<D>::rebuild(std::uint32_t i, const Vec<D>& x, const Box<D>&
     cells.relocate(i, x);
     std::int32_t around[CellList<D>::kMaxNeighbours];
     const std::size_t m = cells.gather(around, cells.neighbours(i, around));
-    const std::uint32_t* candidates = cells.candidates();
-    for (std::size_t k = 0; k < m; ++k) {
-        const std::uint32_t j = candidates[k];
-        if (j != i && near(box, i, j, sizes)) {
-            add(i, j);
-            add(j, i);
-        }
+    // The same pairs in the same order as a test of near() per candidate: the lists, and so the
+    // scans' candidate order, are unchanged.
+    const std::size_t kept = within_reach(box, i, cells.candidates(), m, sizes);
+    for (std::size_t k = 0; k < kept; ++k) {
+        add(i, found_[k]);
+        add(found_[k], i);
     }
+}
+
+template <int D>
+std::size_t NeighbourShells<D>::within_reach(const Box<D>& box, std::uint32_t i,
+                                             const std::uint32_t* candidates, std::size_t m,
+                                             Sizes sizes) {
+    if (found_.size() < m) found_.resize(2 * m);
+    std::uint32_t* found = found_.data();
+    const MinimumImageTwo<D> image(box);
+    __m128d ci[D];
+    for (int k = 0; k < D; ++k) ci[k] = _mm_set1_pd(centre_[i][k]);
+    // near()'s reach, squared, for a partner j: each lane holds the scalar products.
+    const double ri = sizes.radius[sizes.species[i]];
+    auto reach2 = [&](std::uint32_t j) {
+        const double reach = (ri + sizes.radius[sizes.species[j]] + skin_) * (1.0 + 1e-9);
+        return reach * reach;
+    };
+    std::size_t kept = 0, k = 0;
+    for (; k + 2 <= m; k += 2) {
+        const std::uint32_t j0 = candidates[k], j1 = candidates[k + 1];
+        // |separation|^2 summed x, y, z in Eigen's order, each lane as near() computes it.
+        __m128d d2 = _mm_setzero_pd();
+        for (int a = 0; a < D; ++a) {
+            const __m128d d =
+                image(_mm_sub_pd(ci[a], _mm_set_pd(centre_[j1][a], centre_[j0][a])), a);
+            d2 = a == 0 ? _mm_mul_pd(d, d) : _mm_add_pd(d2, _mm_mul_pd(d, d));
+        }
+        const int in = _mm_movemask_pd(_mm_cmplt_pd(d2, _mm_set_pd(reach2(j1), reach2(j0))));
+        found[kept] = j0;
+        kept += std::size_t((in & 1) & int(j0 != i));
+        found[kept] = j1;
+        kept += std::size_t((in >> 1) & int(j1 != i));
+    }
+    for (; k < m; ++k) {
+        const std::uint32_t j = candidates[k];
+        found[kept] = j;
+        kept += std::size_t(j != i && near(box, i, j, sizes));
+    }
+    return kept;
 }
 
 template <int D>

@@ -10,6 +10,8 @@
 //  - A rebuild finds the new neighbours through the engine's cell grid, which holds the centres
 //    (cells at least 2 R_max + skin wide) and is updated by CellList::relocate.
 // Bookkeeping only: the engine computes every event time.
+#include <emmintrin.h>
+
 #include <cstdint>
 #include <vector>
 
@@ -70,13 +72,29 @@ class NeighbourShells {
         std::uint32_t* row = &rows_[i * stride_];
         row[1 + row[0]++] = j;
     }
-    // Removes j from i's list (order not kept).
+    // Removes j from i's list (order not kept). j is found four words at a time: the word
+    // loop's exit was a misprediction per step of the search (perf, 3D phi 0.5: 13% of the
+    // rebuilds' samples). Rows are multiples of 4 words long, the count (word 0) is masked out,
+    // and the first match is j's entry (stale words lie after the count's end).
     void drop(std::uint32_t i, std::uint32_t j) {
         std::uint32_t* row = &rows_[i * stride_];
-        std::uint32_t k = 1;
-        while (row[k] != j) ++k;
+        const __m128i key = _mm_set1_epi32(int(j));
+        std::size_t k = 0;
+        for (std::size_t q = 0;; q += 4) {
+            const __m128i words = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + q));
+            int mask = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(words, key)));
+            if (q == 0) mask &= ~1;
+            if (mask) {
+                k = q + std::size_t(__builtin_ctz(unsigned(mask)));
+                break;
+            }
+        }
         row[k] = row[row[0]--];
     }
+    // The candidates of i's new shell within reach, in candidate order, into found_; returns
+    // how many. Two at a time, with no branch on the outcome.
+    std::size_t within_reach(const Box<D>& box, std::uint32_t i, const std::uint32_t* candidates,
+                             std::size_t m, Sizes sizes);
     void grow();
 
     double skin_ = 0;
@@ -85,6 +103,7 @@ class NeighbourShells {
     // fills up).
     std::size_t stride_ = 0;
     std::vector<std::uint32_t, CacheLineAllocator<std::uint32_t>> rows_;
+    std::vector<std::uint32_t> found_;  // rebuild's scratch (within_reach)
 };
 
 extern template class NeighbourShells<2>;
