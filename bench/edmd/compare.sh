@@ -19,7 +19,10 @@
 # (bench/same_pages.sh; PEER_HUGE_PAGES=0: neither). AT_ONCE=1: each round runs the two at the
 # same time, one per core (taskset), the cores swapped from round to round (use an even number of
 # rounds): on a host whose two cores run at different speeds, and change speed, this compares the
-# codes on the same cores at the same moment (docs/performance.md, "Which core").
+# codes on the same cores at the same moment (docs/performance.md, "Which core"). The geometric
+# mean of the rounds' ratios is printed beside the median: with an even number of rounds at once
+# it weighs both cores alike. At 10^5 particles and more the two runs share the last-level cache
+# and the memory bus, so AT_ONCE=1 is for sizes whose state fits in each core's own caches.
 set -euo pipefail
 if (($# < 1)); then
     sed -n '2,19p' "$0" >&2
@@ -145,7 +148,8 @@ for n in ${ns//,/ }; do
                 "$ratio" "$gw" "$ew" "$ec" "$check"
         done
         f="$out/ratios_phi${phi}_N$n.txt"
-        summary+=("$(printf '%6s %7s   %s [%s-%s]' "$phi" "$n" "$(median <"$f")" "$(sort -g "$f" | head -1)" "$(sort -g "$f" | tail -1)")")
+        gmean=$(awk '{s += log($1); k++} END {printf "%.3f", exp(s / k)}' "$f")
+        summary+=("$(printf '%6s %7s   %s [%s-%s]   geometric mean %s' "$phi" "$n" "$(median <"$f")" "$(sort -g "$f" | head -1)" "$(sort -g "$f" | tail -1)" "$gmean")")
     done
 done
 if [[ $at_once == 1 ]]; then how="rounds at once (cores swapped)"; else how="alternating rounds"; fi
