@@ -61,8 +61,9 @@ void EventDrivenEngine<D>::set_shell_bounds() {
     // A list holds the particles whose centres lie within reach = (R_i + R_j + skin)(1 + 1e-9)
     // of i's centre, and each particle stays within skin / 2 of its own centre. With i's centre
     // at least m = 2 (R_max + skin) from both faces of a periodic axis, every member's position
-    // is inside the box (not wrapped) and within reach + skin < m <= L / 4 of i's: the minimum
-    // image is then the plain difference, and predict_in_shell skips it. Shorter axes never do.
+    // is inside the box (at least skin / 2 - 1e-9 m from a face, not wrapped) and within
+    // reach + skin <= m (1 + 1e-9) < L / 2 of i's, as m <= L / 4: the minimum image is then the
+    // plain difference, and predict_in_shell skips it. Shorter axes never do.
     const double m = largest_diameter() + 2.0 * shells_.skin();
     for (int a = 0; a < D; ++a) {
         const double length = box_.length[a];
