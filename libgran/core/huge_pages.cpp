@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 
@@ -23,7 +24,19 @@ std::optional<std::string> huge_page_tunables(const char* gran_huge_pages, const
     return tunables.empty() ? "glibc.malloc.hugetlb=1" : tunables + ":glibc.malloc.hugetlb=1";
 }
 
+bool openmp_binds_threads(const char* omp_proc_bind, const char* omp_places) {
+    if (!omp_proc_bind) return omp_places != nullptr;
+    std::string first(omp_proc_bind);
+    first = first.substr(0, first.find(','));
+    const auto space = [](char c) { return c == ' ' || c == '\t'; };
+    while (!first.empty() && space(first.front())) first.erase(first.begin());
+    while (!first.empty() && space(first.back())) first.pop_back();
+    for (char& c : first) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return first != "false";
+}
+
 void use_huge_pages(char** argv) {
+    if (openmp_binds_threads(std::getenv("OMP_PROC_BIND"), std::getenv("OMP_PLACES"))) return;
     std::string modes;
     std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
     std::getline(in, modes);

@@ -9,11 +9,21 @@
 // environment otherwise). Measured in docs/performance.md ("Huge pages"); no result changes.
 //
 // GRAN_HUGE_PAGES=0 in the environment turns this off; a GLIBC_TUNABLES that already names
-// glibc.malloc.hugetlb is left as it is.
+// glibc.malloc.hugetlb is left as it is. Nor does the program re-execute when the OpenMP runtime
+// binds threads (openmp_binds_threads): libgomp binds the initial thread to the first place
+// before main() runs, the re-executed program would inherit that one place as its whole
+// affinity, and every thread would then share one core (measured: a DEM run on two threads
+// 2.4x slower, docs/performance.md). Set GLIBC_TUNABLES=glibc.malloc.hugetlb=1 yourself to
+// have both.
 #include <optional>
 #include <string>
 
 namespace gran {
+
+// Whether the OpenMP runtime binds threads to places from start-up, from the environment (null:
+// unset): OMP_PROC_BIND set to anything but false (its first entry), or OMP_PLACES set with
+// OMP_PROC_BIND unset (libgomp then binds as for true).
+bool openmp_binds_threads(const char* omp_proc_bind, const char* omp_places);
 
 // Call first thing in main(). Returns when nothing is to be done or the re-execution failed
 // (the program then runs with the pages it has); otherwise does not return.

@@ -50,5 +50,34 @@ TEST(HugePages, TurnedOffTheCallReturnsAndChangesNoVariable) {
     unsetenv("GRAN_HUGE_PAGES");
 }
 
+// libgomp binds the initial thread at start-up when OMP_PROC_BIND names a binding (its first
+// entry, any case) or when OMP_PLACES is set without OMP_PROC_BIND (OMP_DISPLAY_ENV shows
+// OMP_PROC_BIND = 'TRUE' then); a re-execution would inherit that one place.
+TEST(HugePages, OpenMPBindingIsReadAsLibgompReadsIt) {
+    EXPECT_FALSE(openmp_binds_threads(nullptr, nullptr));
+    EXPECT_FALSE(openmp_binds_threads("false", nullptr));
+    EXPECT_FALSE(openmp_binds_threads("FALSE", "cores")) << "false wins over places";
+    EXPECT_FALSE(openmp_binds_threads(" False ,close", nullptr)) << "the first entry decides";
+    EXPECT_TRUE(openmp_binds_threads("true", nullptr));
+    EXPECT_TRUE(openmp_binds_threads("spread", nullptr));
+    EXPECT_TRUE(openmp_binds_threads("close,spread", "cores"));
+    EXPECT_TRUE(openmp_binds_threads(nullptr, "cores")) << "places alone bind";
+}
+
+// With a binding the program does not re-execute: the environment stays as it was (were it to
+// re-execute, the re-executed test would find GLIBC_TUNABLES and GRAN_HUGE_PAGES_SET changed).
+TEST(HugePages, WithOpenMPBindingTheCallReturnsAndChangesNoVariable) {
+    ASSERT_EQ(setenv("OMP_PROC_BIND", "close", 1), 0);
+    const char* before = std::getenv("GLIBC_TUNABLES");
+    const std::string kept = before ? before : "<unset>";
+    char name[] = "gran_tests";
+    char* argv[] = {name, nullptr};
+    use_huge_pages(argv);
+    const char* after = std::getenv("GLIBC_TUNABLES");
+    EXPECT_EQ(after ? std::string(after) : "<unset>", kept);
+    EXPECT_EQ(std::getenv("GRAN_HUGE_PAGES_SET"), nullptr);
+    unsetenv("OMP_PROC_BIND");
+}
+
 }  // namespace
 }  // namespace gran
