@@ -36,9 +36,9 @@ TEST(HugePages, NothingIsDoneWhereTheKernelGivesThemToAllOrToNone) {
     EXPECT_FALSE(huge_page_tunables(nullptr, nullptr, nullptr, "")) << "no THP in this kernel";
 }
 
-// The no-op path of the program's call: it returns and leaves the environment as it was.
-TEST(HugePages, TurnedOffTheCallReturnsAndChangesNoVariable) {
-    ASSERT_EQ(setenv("GRAN_HUGE_PAGES", "0", 1), 0);
+// Calls use_huge_pages and checks that it returned without re-executing (a re-executed test
+// would find GLIBC_TUNABLES and GRAN_HUGE_PAGES_SET changed).
+void expect_call_returns_and_changes_no_variable() {
     const char* before = std::getenv("GLIBC_TUNABLES");
     const std::string kept = before ? before : "<unset>";
     char name[] = "gran_tests";
@@ -47,6 +47,12 @@ TEST(HugePages, TurnedOffTheCallReturnsAndChangesNoVariable) {
     const char* after = std::getenv("GLIBC_TUNABLES");
     EXPECT_EQ(after ? std::string(after) : "<unset>", kept);
     EXPECT_EQ(std::getenv("GRAN_HUGE_PAGES_SET"), nullptr);
+}
+
+// The no-op path of the program's call: it returns and leaves the environment as it was.
+TEST(HugePages, TurnedOffTheCallReturnsAndChangesNoVariable) {
+    ASSERT_EQ(setenv("GRAN_HUGE_PAGES", "0", 1), 0);
+    expect_call_returns_and_changes_no_variable();
     unsetenv("GRAN_HUGE_PAGES");
 }
 
@@ -68,14 +74,7 @@ TEST(HugePages, OpenMPBindingIsReadAsLibgompReadsIt) {
 // re-execute, the re-executed test would find GLIBC_TUNABLES and GRAN_HUGE_PAGES_SET changed).
 TEST(HugePages, WithOpenMPBindingTheCallReturnsAndChangesNoVariable) {
     ASSERT_EQ(setenv("OMP_PROC_BIND", "close", 1), 0);
-    const char* before = std::getenv("GLIBC_TUNABLES");
-    const std::string kept = before ? before : "<unset>";
-    char name[] = "gran_tests";
-    char* argv[] = {name, nullptr};
-    use_huge_pages(argv);
-    const char* after = std::getenv("GLIBC_TUNABLES");
-    EXPECT_EQ(after ? std::string(after) : "<unset>", kept);
-    EXPECT_EQ(std::getenv("GRAN_HUGE_PAGES_SET"), nullptr);
+    expect_call_returns_and_changes_no_variable();
     unsetenv("OMP_PROC_BIND");
 }
 
