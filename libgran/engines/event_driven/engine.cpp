@@ -98,17 +98,16 @@ void EventDrivenEngine<D>::scan_cells(std::uint32_t i, const std::int32_t* cells
 }
 
 template <int D>
-template <bool Gravity, bool Wraps>
-void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const std::uint32_t* candidates,
-                                         std::size_t n, double& best_out,
-                                         std::int32_t& partner_out) const {
+template <bool Gravity, bool Wraps, class Index>
+void EventDrivenEngine<D>::scan_gathered(std::uint32_t i, const Index* candidates, std::size_t n,
+                                         double& best_out, std::int32_t& partner_out) const {
     // Locals (not the reference arguments or members) in the loop: writes through references
     // would force the compiler to reload every array pointer after each improvement.
     const Vec<D>* r = p_.r.data();
     const Vec<D>* v = p_.v.data();
     const double* t_local = p_.t.data();
     const std::uint32_t* species = p_.species.data();
-    const std::uint32_t* buf = candidates;
+    const Index* buf = candidates;
     const double now = now_;
     const Vec<D> ri = r[i];
     const Vec<D> vi = v[i];
@@ -307,8 +306,8 @@ void EventDrivenEngine<D>::predict_all(double horizon) {
     const bool limited = horizon < kInf;
     const double h = std::max(horizon, 0.0) * (1 + 1e-6) + 1e-300;
     std::vector<std::uint32_t> near;
-    auto meet_before_horizon = [&](std::uint32_t i, const std::uint32_t* buf, std::size_t m,
-                                   bool only_later) __attribute__((always_inline)) {
+    auto meet_before_horizon = [&](std::uint32_t i, const auto* buf, std::size_t m, bool only_later)
+        __attribute__((always_inline)) {
         if (m < 4) {  // too few for the two passes to pay (dilute gases): time them all
             for (std::size_t k = 0; k < m; ++k)
                 if (!only_later || buf[k] > i) meet(i, buf[k]);
@@ -338,7 +337,7 @@ void EventDrivenEngine<D>::predict_all(double horizon) {
     if (shells_on_) {
         // Every pair in the lists once, from its lower index.
         for (std::uint32_t i = 0; i < n; ++i) {
-            const std::uint32_t* list = shells_.list(i);
+            const auto* list = shells_.list(i);
             if (limited) {
                 meet_before_horizon(i, list, shells_.size(i), true);
                 continue;

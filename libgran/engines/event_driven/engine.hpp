@@ -199,10 +199,11 @@ class EventDrivenEngine {
     void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
                     std::int32_t& partner);
     // Wraps: the candidates may lie across a periodic boundary (false only when they cannot,
-    // CellList::interior: the minimum image is then the plain difference, bit for bit).
-    template <bool Gravity, bool Wraps>
-    void scan_gathered(std::uint32_t i, const std::uint32_t* candidates, std::size_t n,
-                       double& best, std::int32_t& partner) const;
+    // CellList::interior: the minimum image is then the plain difference, bit for bit). Index:
+    // the candidates' type (32-bit from the cells, 16-bit from the shells' lists).
+    template <bool Gravity, bool Wraps, class Index>
+    void scan_gathered(std::uint32_t i, const Index* candidates, std::size_t n, double& best,
+                       std::int32_t& partner) const;
     // One-cell periodic axes: every image of each candidate (CellList::image_offsets()).
     void scan_gathered_images(std::uint32_t i, std::size_t n, double& best,
                               std::int32_t& partner) const;

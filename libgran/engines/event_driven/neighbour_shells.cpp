@@ -1,6 +1,7 @@
 #include "libgran/engines/event_driven/neighbour_shells.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "libgran/engines/event_driven/reorder.hpp"
 
@@ -9,10 +10,15 @@ namespace gran {
 template <int D>
 void NeighbourShells<D>::build(const Box<D>& box, double skin, const std::vector<Vec<D>>& r,
                                CellList<D>& cells, Sizes sizes) {
+    if (r.size() > kMaxParticles) {
+        throw std::invalid_argument(
+            "NeighbourShells: at most 65535 particles (16-bit lists); use the cell list "
+            "(engine.neighbour_skin: 0)");
+    }
     skin_ = skin;
     centre_ = r;
     const auto n = std::uint32_t(r.size());
-    // Rows of 16 words in 2D, 32 in 3D (one and two cache lines): room for a dense fluid's
+    // Rows of 16 words in 2D, 32 in 3D (half a cache line and one): room for a dense fluid's
     // neighbours at the skins the engine picks; grow() doubles them otherwise.
     stride_ = D == 2 ? 16 : 32;
     rows_.assign(std::size_t(n) * stride_, 0);
@@ -44,7 +50,7 @@ template <int D>
 void NeighbourShells<D>::rebuild(std::uint32_t i, const Vec<D>& x, const Box<D>& box,
                                  CellList<D>& cells, Sizes sizes) {
     {
-        const std::uint32_t* row = &rows_[i * stride_];
+        const Index* row = &rows_[i * stride_];
         for (std::uint32_t k = 1; k <= row[0]; ++k) drop(row[k], i);
         rows_[i * stride_] = 0;
     }
@@ -117,8 +123,8 @@ void NeighbourShells<D>::reorder(const std::vector<std::uint32_t>& order,
     apply_order(centre_, order);
     apply_order_rows(rows_, stride_, order);
     for (std::size_t i = 0; i < order.size(); ++i) {
-        std::uint32_t* row = &rows_[i * stride_];
-        for (std::uint32_t k = 1; k <= row[0]; ++k) row[k] = inv[row[k]];
+        Index* row = &rows_[i * stride_];
+        for (std::uint32_t k = 1; k <= row[0]; ++k) row[k] = Index(inv[row[k]]);
     }
 }
 

@@ -9,6 +9,9 @@
 //    dense fluid) instead of the 3^D cells around it, and no particle crosses cells.
 //  - A rebuild finds the new neighbours through the engine's cell grid, which holds the centres
 //    (cells at least 2 R_max + skin wide) and is updated by CellList::relocate.
+//  - A list holds 16-bit indices, so that a 3D row (count and 31 neighbours) is one cache line:
+//    at phi 0.5 a scan's cost is mostly the misses on its row and its partners (docs/
+//    performance.md, "Lists of 16-bit indices"). Shells therefore hold at most kMaxParticles.
 // Bookkeeping only: the engine computes every event time.
 #include <emmintrin.h>
 
@@ -26,14 +29,18 @@ namespace gran {
 template <int D>
 class NeighbourShells {
   public:
+    using Index = std::uint16_t;
+    static constexpr std::size_t kMaxParticles = 65535;
+
     // The per-species contact radii the lists are built with.
     struct Sizes {
         const std::uint32_t* species;
         const double* radius;
     };
 
-    // Shells of width `skin` around every particle at r, whose centres fill `cells` (built with
-    // cells at least 2 R_max + skin wide, no one-cell periodic axis); every list is built.
+    // Shells of width `skin` around every particle at r (at most kMaxParticles), whose centres
+    // fill `cells` (built with cells at least 2 R_max + skin wide, no one-cell periodic axis);
+    // every list is built.
     void build(const Box<D>& box, double skin, const std::vector<Vec<D>>& r, CellList<D>& cells,
                Sizes sizes);
     // Particle i, now at x, has reached the edge of its shell: a new shell centred at x, and
@@ -43,7 +50,7 @@ class NeighbourShells {
 
     double skin() const { return skin_; }
     const Vec<D>& centre(std::uint32_t i) const { return centre_[i]; }
-    const std::uint32_t* list(std::uint32_t i) const { return &rows_[i * stride_ + 1]; }
+    const Index* list(std::uint32_t i) const { return &rows_[i * stride_ + 1]; }
     std::size_t size(std::uint32_t i) const { return rows_[i * stride_]; }
 
     // The particles were re-sorted (order[k]: old index of the particle now at k, inv: its
@@ -68,24 +75,24 @@ class NeighbourShells {
         return box.separation(centre_[i], centre_[j]).squaredNorm() < reach * reach;
     }
     void add(std::uint32_t i, std::uint32_t j) {
-        if (rows_[i * stride_] + 1 == stride_) grow();
-        std::uint32_t* row = &rows_[i * stride_];
-        row[1 + row[0]++] = j;
+        if (rows_[i * stride_] + 1u == stride_) grow();
+        Index* row = &rows_[i * stride_];
+        row[1 + row[0]++] = Index(j);
     }
-    // Removes j from i's list (order not kept). j is found four words at a time: the word
+    // Removes j from i's list (order not kept). j is found eight words at a time: the word
     // loop's exit was a misprediction per step of the search (perf, 3D phi 0.5: 13% of the
-    // rebuilds' samples). Rows are multiples of 4 words long, the count (word 0) is masked out,
-    // and the first match is j's entry (stale words lie after the count's end).
+    // rebuilds' samples). Rows are multiples of 8 words long, the count (word 0, two mask bits)
+    // is masked out, and the first match is j's entry (stale words lie after the count's end).
     void drop(std::uint32_t i, std::uint32_t j) {
-        std::uint32_t* row = &rows_[i * stride_];
-        const __m128i key = _mm_set1_epi32(int(j));
+        Index* row = &rows_[i * stride_];
+        const __m128i key = _mm_set1_epi16(short(j));
         std::size_t k = 0;
-        for (std::size_t q = 0;; q += 4) {
+        for (std::size_t q = 0;; q += 8) {
             const __m128i words = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + q));
-            int mask = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(words, key)));
-            if (q == 0) mask &= ~1;
+            int mask = _mm_movemask_epi8(_mm_cmpeq_epi16(words, key));
+            if (q == 0) mask &= ~3;
             if (mask) {
-                k = q + std::size_t(__builtin_ctz(unsigned(mask)));
+                k = q + std::size_t(__builtin_ctz(unsigned(mask))) / 2;
                 break;
             }
         }
@@ -102,7 +109,7 @@ class NeighbourShells {
     // Per particle a row of stride_ words: the count, then the neighbours (rows double when one
     // fills up).
     std::size_t stride_ = 0;
-    std::vector<std::uint32_t, CacheLineAllocator<std::uint32_t>> rows_;
+    std::vector<Index, CacheLineAllocator<Index>> rows_;
     std::vector<std::uint32_t> found_;  // rebuild's scratch (within_reach)
 };
 

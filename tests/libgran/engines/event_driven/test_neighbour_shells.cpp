@@ -82,6 +82,35 @@ TEST(NeighbourShells, ListsHoldExactlyThePairsWithinReachAfterRebuildsAndResorts
     check_lists_follow_rebuilds<3>();
 }
 
+// The lists hold 16-bit indices (one cache line per 3D row): 65535 particles are the most.
+TEST(NeighbourShells, HoldAtMost65535ParticlesAndRefuseOneMore) {
+    const double side = 60.0;  // about 0.3 centres per unit volume: short lists
+    Box<3> box;
+    box.length = {side, side, side};
+    box.periodic = {true, true, true};
+    Rng rng = make_rng(5, Stream::Placement);
+    std::uniform_real_distribution<double> unit(0.0, side);
+    std::vector<Vec<3>> r(NeighbourShells<3>::kMaxParticles + 1);
+    for (auto& x : r) x = {unit(rng), unit(rng), unit(rng)};
+    const std::vector<std::uint32_t> species(r.size(), 0);
+    const std::vector<double> radius{0.5};
+    const NeighbourShells<3>::Sizes sizes{species.data(), radius.data()};
+    CellList<3> cells;
+    cells.build(box, 1.5, r);
+    NeighbourShells<3> shells;
+    EXPECT_THROW(shells.build(box, 0.5, r, cells, sizes), std::invalid_argument);
+    r.pop_back();
+    r[0] = {30.0, 30.0, 30.0};
+    r.back() = {30.5, 30.0, 30.0};  // the last particle has a neighbour
+    cells.build(box, 1.5, r);
+    shells.build(box, 0.5, r, cells, sizes);
+    // The last particle's index survives the 16 bits: it is in its neighbours' lists.
+    const std::uint32_t last = std::uint32_t(r.size() - 1);
+    ASSERT_GT(shells.size(last), 0u);
+    const std::uint32_t j = shells.list(last)[0];
+    EXPECT_EQ(std::count(shells.list(j), shells.list(j) + shells.size(j), last), 1);
+}
+
 TEST(ShellExitTime, ReachesTheShellEdgeFromInsideAndLeavesAtOnceFromOutside) {
     const Vec<3> d(0.1, 0.0, 0.0), v(1.0, 0.0, 0.0);
     EXPECT_DOUBLE_EQ(shell_exit_time<3>(d, v, 0.25), 0.15);
