@@ -118,6 +118,8 @@ class EventDrivenEngine {
     double now() const { return limit_now_ == kNoLimit ? t_origin_ + now_ : limit_now_; }
     const Particles<D>& particles() const { return p_; }
     const Box<D>& box() const { return box_; }
+    // The cells the particles are filed in (for tests: each particle lies in its cell).
+    const CellList<D>& cell_list() const { return cells_; }
     double species_mass(std::uint32_t s) const { return mass_[s]; }
     double species_diameter(std::uint32_t s) const { return diameter_[s]; }
     double species_inertia(std::uint32_t s) const {

@@ -109,6 +109,42 @@ TEST(KickHorizon, EngineToldTheNextKickMeetsTheSameCollisionsOfDisksBetweenWalls
     expect_horizon_changes_no_collision<2>(box, t, c, p, {0.02, 200, 0.1, 0.0, 0.0});
 }
 
+// Whatever the engine skips after a kick, every cell crossing before the next kick must happen:
+// each particle is in its cell when the next kick comes. A dilute gas kicked hard, so that many
+// particles cross within an interval; checked at every kick, each coordinate within 1e-9 cell
+// widths of its cell. (A schedule that skipped the crossings after half the interval left 3089
+// coordinates outside their cells here.)
+TEST(KickHorizon, EveryParticleIsInItsCellAtEachKick) {
+    const SpeciesTable t = bidisperse(400, 0, 1.0);
+    const auto c = testing::contacts_of(t, "{alpha: 0.9}");
+    const Box<3> box = testing::cube_for<3>(t, 0.1, true);
+    const Particles<3> p0 = placed<3>(box, t, c, 44);
+    EventDrivenEngine<3> engine(box, t, c, p0, EngineSettings{});
+    Rng rng = make_rng(7, Stream::Driver);
+    const double interval = 0.05;
+    std::size_t outside = 0, crossings_within = 0;
+    for (int round = 1; round <= 100; ++round) {
+        const std::uint64_t before = engine.counters().cell_crossings;
+        engine.advance(round * interval, UINT64_MAX);
+        crossings_within += engine.counters().cell_crossings - before;
+        engine.synchronize();
+        const CellList<3>& cells = engine.cell_list();
+        const Particles<3>& p = engine.particles();
+        for (std::uint32_t i = 0; i < p.size(); ++i) {
+            for (int a = 0; a < 3; ++a) {
+                const double w = cells.width(a), lo = cells.coordinate(i, a) * w;
+                if (p.r[i][a] < lo - 1e-9 * w || p.r[i][a] > lo + w + 1e-9 * w) ++outside;
+            }
+        }
+        Particles<3>& q = engine.particles_for_update();
+        for (auto& v : q.v)
+            for (int a = 0; a < 3; ++a) v[a] += 0.3 * gaussian(rng);
+        engine.velocities_changed(engine.now() + interval);
+    }
+    EXPECT_GT(crossings_within, 2000u);  // the test exercises crossings within an interval
+    EXPECT_EQ(outside, 0u);
+}
+
 // The comparison can fail: told the next kick comes after half the interval, the engine misses
 // the collisions of the second half, and the sequences part within the first kicks.
 TEST(KickHorizon, AHorizonCutShortMissesCollisionsAndTheComparisonSeesIt) {
