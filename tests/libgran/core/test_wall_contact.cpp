@@ -281,6 +281,20 @@ Particle random_particle(std::mt19937_64& rng, const WallMotion& w, double perio
     return p;
 }
 
+// Prints a brute-force comparison's tallies (worst time error in `unit`s, after scaling by
+// `time_scale`) and holds every comparison to the same bounds: no failure, at least 3000
+// contacts, fewer than 20 graze-marginal cases, residual gaps within 100 round-offs.
+void expect_agreement(const char* name, const Stats& st, double time_scale, const char* unit) {
+    std::printf(
+        "%s: %d cases, %d contacts, %d graze-marginal, |t - t_ref| <= %.2g %s, "
+        "|h(t)| <= %.2g round-off\n",
+        name, st.cases, st.contacts, st.marginal, time_scale * st.worst, unit, st.worst_residual);
+    EXPECT_EQ(st.failures, 0);
+    EXPECT_GT(st.contacts, 3000);
+    EXPECT_LT(st.marginal, 20);
+    EXPECT_LT(st.worst_residual, 100);
+}
+
 TEST(WallContact, SinusoidMatchesBruteForce) {
     std::mt19937_64 rng(2005);
     Stats st;
@@ -291,14 +305,7 @@ TEST(WallContact, SinusoidMatchesBruteForce) {
         const SineLD ref{A, w.omega, w.phase};
         check_case(w, ref, p, 1 / f, std::abs(p.a) + A * w.omega * w.omega, st);
     }
-    std::printf(
-        "sinusoid: %d cases, %d contacts, %d graze-marginal, |t - t_ref| <= %.2g T, "
-        "|h(t)| <= %.2g round-off\n",
-        st.cases, st.contacts, st.marginal, st.worst, st.worst_residual);
-    EXPECT_EQ(st.failures, 0);
-    EXPECT_GT(st.contacts, 3000);
-    EXPECT_LT(st.marginal, 20);
-    EXPECT_LT(st.worst_residual, 100);
+    expect_agreement("sinusoid", st, 1.0, "T");
 }
 
 TEST(WallContact, ParabolicPistonMatchesBruteForce) {
@@ -311,14 +318,7 @@ TEST(WallContact, ParabolicPistonMatchesBruteForce) {
         const PistonLD ref{{A, f}, static_cast<ld>(w.phase) / w.omega};
         check_case(w, ref, p, 1 / f, std::abs(p.a) + 16 * A * f * f, st);
     }
-    std::printf(
-        "piston: %d cases, %d contacts, %d graze-marginal, |t - t_ref| <= %.2g T, "
-        "|h(t)| <= %.2g round-off\n",
-        st.cases, st.contacts, st.marginal, st.worst, st.worst_residual);
-    EXPECT_EQ(st.failures, 0);
-    EXPECT_GT(st.contacts, 3000);
-    EXPECT_LT(st.marginal, 20);
-    EXPECT_LT(st.worst_residual, 100);
+    expect_agreement("piston", st, 1.0, "T");
 }
 
 TEST(WallContact, FixedAndSawtoothWallsMatchBruteForce) {
@@ -331,14 +331,7 @@ TEST(WallContact, FixedAndSawtoothWallsMatchBruteForce) {
         const FixedLD ref;
         check_case(w, ref, p, scale, std::abs(p.a), st);
     }
-    std::printf(
-        "fixed/sawtooth: %d cases, %d contacts, %d graze-marginal, |t - t_ref| <= %.2g s, "
-        "|h(t)| <= %.2g round-off\n",
-        st.cases, st.contacts, st.marginal, 0.1 * st.worst, st.worst_residual);
-    EXPECT_EQ(st.failures, 0);
-    EXPECT_GT(st.contacts, 3000);
-    EXPECT_LT(st.marginal, 20);
-    EXPECT_LT(st.worst_residual, 100);
+    expect_agreement("fixed/sawtooth", st, 0.1, "s");
 }
 
 // A particle that has just bounced off a moving wall (gap 0, receding from it) is met again when
