@@ -10,7 +10,7 @@
 #include "libgran/engines/dem/engine.hpp"
 #include "tests/support/contacts.hpp"
 
-namespace gran::testing {
+namespace gran::testing::dem {
 
 constexpr double kPi = std::numbers::pi;
 
@@ -38,7 +38,7 @@ inline ContactTable soft(const SpeciesTable& t, const std::string& law, const st
                          const std::string& walls = "") {
     std::string yaml = "{law: " + law + ", " + keys;
     if (!walls.empty()) yaml += ", walls: {" + walls + "}";
-    return contacts_of(t, yaml + "}");
+    return testing::contacts_of(t, yaml + "}");
 }
 
 inline double duration(const ContactTable& c, std::size_t index) {
@@ -71,4 +71,4 @@ inline std::string sci(double x) {
     return buf;
 }
 
-}  // namespace gran::testing
+}  // namespace gran::testing::dem

@@ -12,16 +12,12 @@
 #include <random>
 
 #include "libgran/core/wall_motion.hpp"
-#include "tests/support/paper_piston.hpp"
+#include "tests/support/wall_reference.hpp"
 
 namespace gran {
 namespace {
 
-using testing::ld;
-using testing::PaperPiston;
-constexpr double kNever = std::numeric_limits<double>::infinity();
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kPi = std::numbers::pi;
+using namespace testing::wall;  // ld, kNever, kEps, kPi, PaperPiston
 
 // ---------------------------------------------------------------------------------------------
 // Waveforms

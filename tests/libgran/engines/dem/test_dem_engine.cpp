@@ -24,14 +24,7 @@
 namespace gran {
 namespace {
 
-using testing::duration;
-using testing::kPi;
-using testing::make_box;
-using testing::make_species;
-using testing::momentum;
-using testing::sci;
-using testing::soft;
-using testing::table_of;
+using namespace testing::dem;  // make_species, table_of, soft, duration, make_box, momentum, sci
 
 template <int D>
 Vec<D> axis_vector(int axis, double value = 1) {

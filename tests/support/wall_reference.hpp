@@ -1,12 +1,17 @@
 #pragma once
-// McNamara & Falcon's parabolic piston (2005, Sec. II B), written independently of
-// libgran/core/wall_motion.hpp in long double: the reference of the waveform tests
-// (test_wall_motion.cpp) and of the wall-contact tests (test_wall_contact.cpp).
+// What the waveform tests (test_wall_motion.cpp) and the wall-contact tests
+// (test_wall_contact.cpp) share: long double, their constants, and McNamara & Falcon's parabolic
+// piston (2005, Sec. II B) written independently of libgran/core/wall_motion.hpp.
 #include <cmath>
+#include <limits>
+#include <numbers>
 
-namespace gran::testing {
+namespace gran::testing::wall {
 
 using ld = long double;
+constexpr double kNever = std::numeric_limits<double>::infinity();
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kPi = std::numbers::pi;
 
 // The paper's piston, written independently: period 4 t0 = 1 / f, parabolas on [-t0, t0] and
 // [t0, 3 t0] (with the 1 / t0^2 and the centring on 2 t0 that the printed formula lost).
@@ -26,4 +31,4 @@ struct PaperPiston {
     ld d2z(ld t) const { return reduce(t) <= t0() ? A / (t0() * t0()) : -A / (t0() * t0()); }
 };
 
-}  // namespace gran::testing
+}  // namespace gran::testing::wall
