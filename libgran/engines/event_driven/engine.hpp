@@ -35,7 +35,7 @@
 #include "libgran/engines/event_driven/cell_list.hpp"
 #include "libgran/engines/event_driven/collision_rules.hpp"
 #include "libgran/engines/event_driven/event_times.hpp"
-#include "libgran/engines/event_driven/kick_neighbours.hpp"
+#include "libgran/engines/event_driven/kick_pairs.hpp"
 #include "libgran/engines/event_driven/neighbour_shells.hpp"
 #include "libgran/engines/event_driven/pair_counts.hpp"
 #include "libgran/engines/event_driven/scheduler.hpp"
@@ -297,7 +297,7 @@ class EventDrivenEngine {
     CellList<D> cells_;
     bool shells_on_ = false;
     NeighbourShells<D> shells_;
-    KickNeighbours<D> kick_;           // thin lists for the pass after a kick (a cache)
+    KickPairs<D> kick_;                // thin pair list for the pass after a kick (a cache)
     std::vector<std::uint32_t> wide_;  // particles the list cannot serve, at the last kick
     // Where a shell's centre must lie, per axis, for its scan to skip the minimum image
     // (set_shell_bounds; derived from the box, the radii and the skin, so not archived).

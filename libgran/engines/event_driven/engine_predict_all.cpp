@@ -87,12 +87,12 @@ void EventDrivenEngine<D>::predict_all(double horizon) {
         for (std::size_t q = 0; q < kept; ++q) meet(i, out[q]);
     };
     if (limited && kick_lists_serve(h)) {
-        // The thin lists (kick_neighbours.hpp): every pair that can touch before the horizon is
+        // The thin pair list (kick_pairs.hpp): every pair that can touch before the horizon is
         // in it, or has a wide partner, whose whole neighbourhood is timed. Each pair is timed
         // from its lower index (meet(i, j), i < j), so its time does not depend on which of the
         // two found it, nor on the lists' contents: a run is the same whenever they were built.
         for (std::uint32_t i = 0; i < n; ++i) {
-            meet_before_horizon(i, kick_.list(i), kick_.size(i), true, 1);
+            meet_before_horizon(i, kick_.partners(i), kick_.count(i), false, 1);
         }
         for (std::uint32_t w : wide_) {
             const std::size_t m = gather_neighbourhood(w);
@@ -170,15 +170,23 @@ bool EventDrivenEngine<D>::kick_lists_serve(double h) {
     const double dmax = largest_diameter();
     const double skin = factor * std::sqrt(v2 / n) * h;
     if (!(skin <= largest * dmax)) return false;
-    if (!kick_.built() || skin > 1.5 * kick_.skin() || skin < kick_.skin() / 1.5) {
-        if (!kick_.build(box_, skin, dmax + skin, p_.r, sizes())) return false;
-    }
     const double g = g_.norm();
-    kick_.refresh(
-        box_, p_.r, sizes(), [&](std::uint32_t i) { return p_.v[i].norm() * h + 0.5 * g * h * h; },
-        wide_);
+    auto travel = [&](std::uint32_t i) { return p_.v[i].norm() * h + 0.5 * g * h * h; };
+    auto build = [&] {
+        wide_.clear();
+        return kick_.build(box_, skin, dmax + skin, p_.r, {p_.species.data(), radius_.data()});
+    };
+    if (!kick_.built() || skin > 1.5 * kick_.skin() || skin < kick_.skin() / 1.5) {
+        if (!build()) return false;
+    }
+    kick_.find_wide(box_, p_.r, travel, wide_);
+    if (wide_.size() > n / 16) {
+        if (!build()) return false;
+        kick_.find_wide(box_, p_.r, travel, wide_);
+    }
     if (std::getenv("GRAN_KICK_DEBUG")) {
-        std::fprintf(stderr, "kick: skin %g h %g wide %zu\n", skin, h, wide_.size());
+        std::fprintf(stderr, "kick: skin %g h %g wide %zu pairs/particle %g\n", skin, h,
+                     wide_.size(), double(kick_.pairs()) / n);
     }
     return true;
 }
