@@ -35,7 +35,6 @@
 #include "libgran/engines/event_driven/cell_list.hpp"
 #include "libgran/engines/event_driven/collision_rules.hpp"
 #include "libgran/engines/event_driven/event_times.hpp"
-#include "libgran/engines/event_driven/kick_pairs.hpp"
 #include "libgran/engines/event_driven/neighbour_shells.hpp"
 #include "libgran/engines/event_driven/pair_counts.hpp"
 #include "libgran/engines/event_driven/scheduler.hpp"
@@ -198,12 +197,6 @@ class EventDrivenEngine {
     // instead of once from each side; the heap is rebuilt by the caller. Collisions later than
     // `horizon` (relative time) need not be found.
     void predict_all(double horizon = kInf);
-    // Whether the thin pair list serves the pass after a kick with horizon h (then rebuilt if
-    // needed, and the particles it cannot serve in wide_); engine_predict_all.cpp.
-    bool kick_lists_serve(double h);
-    // The candidates of i's full neighbourhood (its shell list, or its 3^D cells gathered into
-    // cells_.candidates()); returns how many.
-    std::size_t gather_neighbourhood(std::uint32_t i);
     // Earliest collision of i with the candidates of the given cells, if before best.
     void scan_cells(std::uint32_t i, const std::int32_t* cells, int ncells, double& best,
                     std::int32_t& partner);
@@ -297,8 +290,6 @@ class EventDrivenEngine {
     CellList<D> cells_;
     bool shells_on_ = false;
     NeighbourShells<D> shells_;
-    KickPairs<D> kick_;                // thin pair list for the pass after a kick (a cache)
-    std::vector<std::uint32_t> wide_;  // particles the list cannot serve, at the last kick
     // Where a shell's centre must lie, per axis, for its scan to skip the minimum image
     // (set_shell_bounds; derived from the box, the radii and the skin, so not archived).
     Vec<D> shell_lo_ = Vec<D>::Zero(), shell_hi_ = Vec<D>::Zero();

@@ -1,10 +1,6 @@
-// The re-prediction of every particle at once, after a change of all velocities (a thermostat's
-// kick): each pair timed once, and with a horizon (the next kick) only the pairs that can touch
-// before it; in dense gases those are taken from thin lists (kick_neighbours.hpp).
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-
+// The re-prediction of every particle at once, at the start and after a change of all
+// velocities (a thermostat's kick): each pair timed once, and with a horizon (the next kick)
+// only the pairs that can touch before it.
 #include "libgran/engines/event_driven/engine.hpp"
 
 namespace gran {
@@ -57,10 +53,9 @@ void EventDrivenEngine<D>::predict_all(double horizon) {
     const bool limited = horizon < kInf;
     const double h = std::max(horizon, 0.0) * (1 + 1e-6) + 1e-300;
     std::vector<std::uint32_t> near;
-    auto meet_before_horizon = [&](std::uint32_t i, const auto* buf, std::size_t m, bool only_later,
-                                   std::size_t fewest_filtered = 4) __attribute__((always_inline)) {
-        if (m <
-            fewest_filtered) {  // too few for the two passes to pay (dilute gases): time them all
+    auto meet_before_horizon = [&](std::uint32_t i, const auto* buf, std::size_t m, bool only_later)
+        __attribute__((always_inline)) {
+        if (m < 4) {  // too few for the two passes to pay (dilute gases): time them all
             for (std::size_t k = 0; k < m; ++k)
                 if (!only_later || buf[k] > i) meet(i, buf[k]);
             return;
@@ -86,28 +81,6 @@ void EventDrivenEngine<D>::predict_all(double horizon) {
         }
         for (std::size_t q = 0; q < kept; ++q) meet(i, out[q]);
     };
-    if (limited && kick_lists_serve(h)) {
-        // The thin pair list (kick_pairs.hpp): every pair that can touch before the horizon is
-        // in it, or has a wide partner, whose whole neighbourhood is timed. Each pair is timed
-        // from its lower index (meet(i, j), i < j), so its time does not depend on which of the
-        // two found it, nor on the lists' contents: a run is the same whenever they were built.
-        for (std::uint32_t i = 0; i < n; ++i) {
-            meet_before_horizon(i, kick_.partners(i), kick_.count(i), false, 1);
-        }
-        for (std::uint32_t w : wide_) {
-            const std::size_t m = gather_neighbourhood(w);
-            const auto* buf = shells_on_ ? static_cast<const void*>(shells_.list(w))
-                                         : static_cast<const void*>(cells_.candidates());
-            for (std::size_t k = 0; k < m; ++k) {
-                const std::uint32_t j =
-                    shells_on_ ? static_cast<const typename NeighbourShells<D>::Index*>(buf)[k]
-                               : static_cast<const std::uint32_t*>(buf)[k];
-                if (j != w) meet(std::min(w, j), std::max(w, j));
-            }
-        }
-        for (std::uint32_t i = 0; i < n; ++i) schedule(i, best[i], partner[i]);
-        return;
-    }
     if (shells_on_) {
         // Every pair in the lists once, from its lower index.
         for (std::uint32_t i = 0; i < n; ++i) {
@@ -143,60 +116,7 @@ void EventDrivenEngine<D>::predict_all(double horizon) {
     for (std::uint32_t i = 0; i < n; ++i) schedule(i, best[i], partner[i]);
 }
 
-template <int D>
-std::size_t EventDrivenEngine<D>::gather_neighbourhood(std::uint32_t i) {
-    if (shells_on_) return shells_.size(i);
-    std::int32_t cells[CellList<D>::kMaxNeighbours];
-    return cells_.gather(cells, cells_.neighbours(i, cells));
-}
-
-template <int D>
-bool EventDrivenEngine<D>::kick_lists_serve(double h) {
-    // The skin: a few kicks' travel of a particle at the rms speed, so that a shell moves every
-    // few kicks. Lists pay only where that is a small fraction of a diameter (dense gases).
-    static const double factor = [] {
-        const char* e = std::getenv("GRAN_KICK_SKIN_FACTOR");
-        return e ? std::atof(e) : 0.0;  // off unless asked for
-    }();
-    static const double largest = [] {
-        const char* e = std::getenv("GRAN_KICK_SKIN_MAX");
-        return e ? std::atof(e) : 0.5;
-    }();
-    wide_.clear();
-    const auto n = std::uint32_t(p_.size());
-    if (factor <= 0.0 || n == 0 || kick_.refused()) return false;
-    double v2 = 0.0;
-    for (std::uint32_t i = 0; i < n; ++i) v2 += p_.v[i].squaredNorm();
-    const double dmax = largest_diameter();
-    const double skin = factor * std::sqrt(v2 / n) * h;
-    if (!(skin <= largest * dmax)) return false;
-    const double g = g_.norm();
-    auto travel = [&](std::uint32_t i) { return p_.v[i].norm() * h + 0.5 * g * h * h; };
-    auto build = [&] {
-        wide_.clear();
-        return kick_.build(box_, skin, dmax + skin, p_.r, {p_.species.data(), radius_.data()});
-    };
-    if (!kick_.built() || skin > 1.5 * kick_.skin() || skin < kick_.skin() / 1.5) {
-        if (!build()) return false;
-    }
-    kick_.find_wide(box_, p_.r, travel, wide_);
-    if (wide_.size() > n / 16) {
-        if (!build()) return false;
-        kick_.find_wide(box_, p_.r, travel, wide_);
-    }
-    if (std::getenv("GRAN_KICK_DEBUG")) {
-        std::fprintf(stderr, "kick: skin %g h %g wide %zu pairs/particle %g\n", skin, h,
-                     wide_.size(), double(kick_.pairs()) / n);
-    }
-    return true;
-}
-
-#define GRAN_INSTANTIATE(D)                                                         \
-    template void EventDrivenEngine<D>::predict_all(double);                        \
-    template std::size_t EventDrivenEngine<D>::gather_neighbourhood(std::uint32_t); \
-    template bool EventDrivenEngine<D>::kick_lists_serve(double);
-GRAN_INSTANTIATE(2)
-GRAN_INSTANTIATE(3)
-#undef GRAN_INSTANTIATE
+template void EventDrivenEngine<2>::predict_all(double);
+template void EventDrivenEngine<3>::predict_all(double);
 
 }  // namespace gran

@@ -62,16 +62,12 @@ void EventDrivenEngine<D>::sort_by_cell() {
     events_.reorder(order, inv);
     cells_.reorder(order);
     if (shells_on_) shells_.reorder(order, inv);
-    kick_.clear();  // rebuilt at the next kick (the lists' indices change)
     ++counters_.sorts;
 }
 
 template <int D>
 void EventDrivenEngine<D>::checkpoint(StateArchive& ar) {
     ar.section("event_driven engine");
-    // The thin pair list of the kicks is a cache, rebuilt at the next kick: a run does not depend
-    // on when they were built (engine_predict_all.cpp).
-    kick_.clear();
     ar.io(p_);
     ar.io(counters_);
     ar.io(now_);
