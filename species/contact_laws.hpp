@@ -72,6 +72,7 @@
 
 #include "libgran/core/vec.hpp"
 #include "libgran/engines/dem/contact_force.hpp"
+#include "libgran/engines/dem/two_contacts.hpp"
 
 namespace gran {
 
@@ -192,6 +193,30 @@ template <int D>
     Vec<D> f_t = -p.gamma_t * g_t;                         // (A7)
     if (slipping) f_t = (-cap / std::sqrt(speed2)) * g_t;  // (A8): |F_t| = mu |F_n| along -g_t
     return contact_detail::assemble<D>(f_n, f_t, n, l_i, l_j, slipping);
+}
+
+// linear_dashpot_force for two contacts of spheres at once, lane by lane the same operations in
+// the same order (two_contacts.hpp): the same bits. The slip branch is taken when either
+// contact slips, and each lane keeps its own outcome.
+[[gnu::always_inline]] inline void linear_dashpot_force_two(
+    const LinearDashpotContact& pa, const LinearDashpotContact& pb, two_contacts::Lane delta,
+    const two_contacts::Vec2<3>& n, const two_contacts::Vec2<3>& g, two_contacts::Lane l_i,
+    two_contacts::Lane l_j, ContactForce<3>& a, ContactForce<3>& b) {
+    using namespace two_contacts;
+    const Lane k_n = lanes(pa.k_n, pb.k_n), gamma_n = lanes(pa.gamma_n, pb.gamma_n);
+    const Lane gamma_t = lanes(pa.gamma_t, pb.gamma_t), mu = lanes(pa.mu, pb.mu);
+    const Lane g_n = dot(g, n);
+    const Lane f_n = sub(mul(k_n, delta), mul(gamma_n, g_n));  // (A5)
+    const Vec2<3> g_t = sub(g, scale(g_n, n));
+    const Lane cap = mul(mu, abs(f_n));
+    const Lane speed2 = dot(g_t, g_t);
+    const Lane slipping = _mm_cmpgt_pd(mul(mul(gamma_t, gamma_t), speed2), mul(cap, cap));
+    Vec2<3> f_t = scale(neg(gamma_t), g_t);  // (A7)
+    if (_mm_movemask_pd(slipping)) {         // (A8)
+        const Vec2<3> capped = scale(_mm_div_pd(neg(cap), _mm_sqrt_pd(speed2)), g_t);
+        for (int k = 0; k < 3; ++k) f_t.c[k] = select(slipping, capped.c[k], f_t.c[k]);
+    }
+    assemble(f_n, f_t, n, l_i, l_j, slipping, a, b);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -30,6 +30,16 @@ struct LinearDashpot : soft_contact::LawBase<LinearDashpotContact> {
                                                         Vec<D>& /*spring*/) {
         return linear_dashpot_force<D>(c.contact, delta, n, g, l_i, l_j);
     }
+    // Two contacts of spheres at once (the DEM engine's pair loop, two_contacts.hpp).
+    static constexpr bool two_lanes = true;
+    [[gnu::always_inline]] static void force_two(const Pair& a, const Pair& b,
+                                                 two_contacts::Lane delta,
+                                                 const two_contacts::Vec2<3>& n,
+                                                 const two_contacts::Vec2<3>& g,
+                                                 two_contacts::Lane l_i, two_contacts::Lane l_j,
+                                                 ContactForce<3>& on_a, ContactForce<3>& on_b) {
+        linear_dashpot_force_two(a.contact, b.contact, delta, n, g, l_i, l_j, on_a, on_b);
+    }
     static double elastic_energy(const Pair& c, double delta, double /*spring2*/) {
         return 0.5 * c.contact.k_n * delta * delta;
     }

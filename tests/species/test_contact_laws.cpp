@@ -8,7 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <utility>
 
 #include "species/contact_laws.hpp"
@@ -405,6 +408,58 @@ TEST(ContactLawsElastic, DisksConserveEnergyToSecondOrder) {
 }
 TEST(ContactLawsElastic, SpheresConserveEnergyToSecondOrder) {
     check_elastic_energy<3>();
+}
+
+// ----- two contacts per instruction (the DEM pair loop's path for this law) ---------------------
+
+// Every field of each lane's ContactForce has the bits of linear_dashpot_force for that contact,
+// for pairs of sticking contacts, slipping ones and one of each (the slip branch runs for both
+// lanes as soon as one slips, and each lane keeps its own outcome).
+TEST(ContactLawsLinear, TwoContactsAtOnceGiveTheBitsOfOneAtATime) {
+    using namespace two_contacts;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-2.0, 2.0), positive(0.05, 1.0);
+    auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+    auto same = [&](const ContactForce<3>& lane, const ContactForce<3>& one) {
+        for (int a = 0; a < 3; ++a) {
+            if (bits(lane.force[a]) != bits(one.force[a]) ||
+                bits(lane.torque_i[a]) != bits(one.torque_i[a]) ||
+                bits(lane.torque_j[a]) != bits(one.torque_j[a]))
+                return false;
+        }
+        return bits(lane.f_n) == bits(one.f_n) && lane.slipping == one.slipping;
+    };
+    int outcomes[2][2] = {};  // [first slips][second slips]
+    for (int trial = 0; trial < 4000; ++trial) {
+        LinearDashpotContact p[2];
+        double delta[2], l_i[2], l_j[2];
+        Vec<3> n[2], g[2];
+        for (int c = 0; c < 2; ++c) {
+            // mu from 0.01 (almost every contact slips) to 10 (almost none does).
+            p[c] =
+                linear_dashpot_contact(2e5, 0.5, 0.9, std::pow(10.0, u(rng)), 20.0 * positive(rng));
+            delta[c] = 1e-3 * positive(rng);
+            n[c] = Vec<3>(u(rng), u(rng), u(rng)).normalized();
+            g[c] = Vec<3>(u(rng), u(rng), u(rng));
+            l_i[c] = 0.5 * positive(rng) + 0.25;
+            l_j[c] = 0.5 * positive(rng) + 0.25;
+        }
+        ContactForce<3> a, b;
+        linear_dashpot_force_two(p[0], p[1], lanes(delta[0], delta[1]), lanes<3>(n[0], n[1]),
+                                 lanes<3>(g[0], g[1]), lanes(l_i[0], l_i[1]), lanes(l_j[0], l_j[1]),
+                                 a, b);
+        const ContactForce<3> one_a =
+            linear_dashpot_force<3>(p[0], delta[0], n[0], g[0], l_i[0], l_j[0]);
+        const ContactForce<3> one_b =
+            linear_dashpot_force<3>(p[1], delta[1], n[1], g[1], l_i[1], l_j[1]);
+        ASSERT_TRUE(same(a, one_a)) << "trial " << trial << ", first lane";
+        ASSERT_TRUE(same(b, one_b)) << "trial " << trial << ", second lane";
+        ++outcomes[one_a.slipping][one_b.slipping];
+    }
+    // Every combination was met often enough for the test to mean something.
+    for (int x = 0; x < 2; ++x) {
+        for (int y = 0; y < 2; ++y) EXPECT_GT(outcomes[x][y], 200) << x << ", " << y;
+    }
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "libgran/core/parallel.hpp"
 #include "libgran/core/registry.hpp"
 #include "libgran/engines/dem/engine.hpp"
+#include "libgran/engines/dem/two_contacts.hpp"
 
 namespace gran {
 
@@ -131,6 +132,40 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
     std::array<std::uint32_t, kBlock> hit;
     std::array<std::array<double, D>, kBlock> sep;
     std::array<double, kBlock> dist_of, inv_dist;
+    // Laws that evaluate two sphere contacts per instruction say so (two_lanes, force_two).
+    constexpr bool kTwoLanes = [] {
+        if constexpr (D == 3 && requires { L::two_lanes; }) return L::two_lanes;
+        return false;
+    }();
+    // A contact's force and torques added to its grains (halo grains: into the entry's slots).
+    auto add_contact = [&](std::size_t k, std::uint32_t i, std::uint32_t j,
+                           const ContactForce<D>& c) __attribute__((always_inline)) {
+        if constexpr (Halo) {
+            const bool halo_i = halo[i] != 0, halo_j = halo[j] != 0;
+            if (!halo_i) {
+                f[i] += c.force;
+                if constexpr (Rot) tau[i] += c.torque_i;
+            }
+            if (!halo_j) {
+                f[j] -= c.force;
+                if constexpr (Rot) tau[j] += c.torque_j;
+            }
+            if (halo_i || halo_j) {
+                slot_force[k] = c.force;
+                if constexpr (Rot) {
+                    slot_torque_i[k] = c.torque_i;
+                    slot_torque_j[k] = c.torque_j;
+                }
+            }
+        } else {
+            f[i] += c.force;
+            f[j] -= c.force;
+            if constexpr (Rot) {
+                tau[i] += c.torque_i;
+                tau[j] += c.torque_j;
+            }
+        }
+    };
     for (std::size_t b0 = k0; b0 < k1; b0 += kBlock) {
         const std::size_t b1 = std::min(k1, b0 + kBlock);
         std::size_t m = 0;
@@ -155,7 +190,52 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
             dist_of[q] = std::sqrt(dist_of[q]);
             inv_dist[q] = 1.0 / dist_of[q];
         }
-        for (std::size_t q = 0; q < m; ++q) {
+        std::size_t q = 0;
+        if constexpr (kTwoLanes) {
+            // Two contacts at a time (two_contacts.hpp), each lane the operations of the loop
+            // below; the contacts' forces are then added in entry order, as that loop adds them.
+            using namespace two_contacts;
+            for (; q + 2 <= m; q += 2) {
+                const std::size_t ka = b0 + (hit[q] & ~kFormed), kb = b0 + (hit[q + 1] & ~kFormed);
+                const bool forms_a = (hit[q] & kFormed) != 0, forms_b = (hit[q + 1] & kFormed) != 0;
+                const std::uint32_t ia = owner[ka], ja = partner[ka];
+                const std::uint32_t ib = owner[kb], jb = partner[kb];
+                const std::uint32_t sia = species[ia], sja = species[ja];
+                const std::uint32_t sib = species[ib], sjb = species[jb];
+                const typename L::Pair& pa = params[class_of[sia] * classes + class_of[sja]];
+                const typename L::Pair& pb = params[class_of[sib] * classes + class_of[sjb]];
+                const Lane sigma_ij = lanes(sigma[sia * ns + sja], sigma[sib * ns + sjb]);
+                Vec2<3> d;
+                for (int a = 0; a < 3; ++a)
+                    d.c[a] = lanes(sep[q][std::size_t(a)], sep[q + 1][std::size_t(a)]);
+                const Vec2<3> nrm = scale(lanes(inv_dist[q], inv_dist[q + 1]), d);
+                const Lane delta = sub(sigma_ij, lanes(dist_of[q], dist_of[q + 1]));  // (A6)
+                active += 2;
+                formed += std::uint64_t(forms_a) + std::uint64_t(forms_b);
+                const Lane relative = _mm_div_pd(delta, sigma_ij);
+                const double rel_a = first(relative), rel_b = second(relative);
+                worst = rel_a > worst ? rel_a : worst;
+                worst = rel_b > worst ? rel_b : worst;
+                const Lane li = lanes(radius[sia], radius[sib]),
+                           lj = lanes(radius[sja], radius[sjb]);
+                Vec2<3> wpi{}, wpj{};
+                if constexpr (Rot) {
+                    wpi = lanes<3>(w_pred[ia], w_pred[ib]);
+                    wpj = lanes<3>(w_pred[ja], w_pred[jb]);
+                } else {
+                    wpi = lanes<3>(zero, zero);
+                    wpj = wpi;
+                }
+                const Vec2<3> g =
+                    contact_velocity(lanes<3>(v_pred[ia], v_pred[ib]),
+                                     lanes<3>(v_pred[ja], v_pred[jb]), wpi, wpj, li, lj, nrm);
+                ContactForce<D> ca, cb;
+                L::force_two(pa, pb, delta, nrm, g, li, lj, ca, cb);
+                add_contact(ka, ia, ja, ca);
+                add_contact(kb, ib, jb, cb);
+            }
+        }
+        for (; q < m; ++q) {
             const std::size_t k = b0 + (hit[q] & ~kFormed);
             const bool forms = (hit[q] & kFormed) != 0;
             const std::uint32_t i = owner[k], j = partner[k];
@@ -203,31 +283,7 @@ void DemEngine<D>::pair_range(double dt_advance, std::size_t k0, std::size_t k1,
                     return L::template force<D>(P, delta, nrm, g, li, lj, unused);
                 }
             }();
-            if constexpr (Halo) {
-                const bool halo_i = halo[i] != 0, halo_j = halo[j] != 0;
-                if (!halo_i) {
-                    f[i] += c.force;
-                    if constexpr (Rot) tau[i] += c.torque_i;
-                }
-                if (!halo_j) {
-                    f[j] -= c.force;
-                    if constexpr (Rot) tau[j] += c.torque_j;
-                }
-                if (halo_i || halo_j) {
-                    slot_force[k] = c.force;
-                    if constexpr (Rot) {
-                        slot_torque_i[k] = c.torque_i;
-                        slot_torque_j[k] = c.torque_j;
-                    }
-                }
-            } else {
-                f[i] += c.force;
-                f[j] -= c.force;
-                if constexpr (Rot) {
-                    tau[i] += c.torque_i;
-                    tau[j] += c.torque_j;
-                }
-            }
+            add_contact(k, i, j, c);
         }
     }
     (void)halo;
