@@ -98,6 +98,8 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
     const std::size_t per_thread = std::max<std::size_t>(1, settings_.min_particles_per_thread);
     threads_ = int(std::min<std::size_t>(std::size_t(settings_.threads),
                                          std::max<std::size_t>(1, p_.size() / per_thread)));
+    share_balance_.reset(std::size_t(threads_));
+    balancing_ = settings_.balance_threads && threads_ > 1;
     configure_neighbours();
     allocate_state();
     place_walls();
@@ -204,6 +206,12 @@ template <int D>
 void DemEngine<D>::rebuild() {
     const bool sort = sort_due();
     if (sort) sort_particles();
+    if (balancing_) {  // the search cut by the threads' speeds, as the pair rows are
+        search_share_.resize(std::size_t(threads_));
+        for (std::size_t t = 0; t < search_share_.size(); ++t)
+            search_share_[t] = share_balance_.fraction(t);
+        list_.set_search_shares(search_share_);
+    }
     list_.build(p_.r, p_.species, threads_, sort ? new_index_.data() : nullptr);
     if (stage_clock_.enabled() && threads_ > 1) tally_search_shares();
     std::fill(disp_.begin(), disp_.end(), Vec<D>::Zero());

@@ -6,6 +6,7 @@
 // DemLawLoops, once per step.
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -64,8 +65,16 @@ void DemEngine<D>::pair_forces(double dt_advance) {
                 return;
             }
             const std::uint32_t* start = list_.start.data();
-            pair_range<L, Rot, true>(dt_advance, start[pair_rows_[part]],
-                                     start[pair_rows_[part + 1]], tallies_[part]);
+            const std::size_t k0 = start[pair_rows_[part]], k1 = start[pair_rows_[part + 1]];
+            if (balancing_) {
+                // Each thread's pace for the next split (ShareBalance): its own slot only.
+                const auto begin = std::chrono::steady_clock::now();
+                pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part]);
+                const std::chrono::duration<double> took = std::chrono::steady_clock::now() - begin;
+                share_balance_.record(part, double(k1 - k0), took.count());
+            } else {
+                pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part]);
+            }
             parts_barrier();
             sum_halo_pair_forces(part, parts);
         });
