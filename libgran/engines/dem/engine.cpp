@@ -310,7 +310,10 @@ void DemEngine<D>::open_step() {
     // (pair_rows_, of the last list): the lines it writes here are those it reads there, and do
     // not move between the cores (docs/performance.md, "The drift on the pair stage's rows").
     if (rows_split())
-        parallel_ranges(threads_, pair_rows_, drift);
+        parallel_ranges(threads_, pair_rows_,
+                        [this, &drift](std::size_t part, std::size_t i0, std::size_t i1) {
+                            timed_share(part, [&] { drift(part, i0, i1); });
+                        });
     else
         parallel_chunks(threads_, n, drift);
     stage_clock_.lap(stage_times_.kicks_and_drift);
@@ -321,6 +324,7 @@ void DemEngine<D>::open_step() {
     if (*std::max_element(moved2.begin(), moved2.end()) > 0.25 * skin_ * skin_) rebuild();
     stage_clock_.lap(stage_times_.neighbour_list);
     accumulate_forces(dt_);  // 3. forces at t + dt (f_, tau_ were zeroed by kick_drift)
+    if (balancing_) share_balance_.end_step();
 }
 
 template <int D>

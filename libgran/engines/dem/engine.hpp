@@ -30,6 +30,7 @@
 // wall rotation (lever arm 0).
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -361,8 +362,21 @@ class DemEngine {
     std::vector<std::uint32_t> halo_start_, halo_entries_;
     std::vector<std::uint32_t> halo_slot_, halo_fill_;  // split_pair_rows' scratch
     bool pair_split_stale_ = true;
-    ShareBalance share_balance_;        // the threads' fractions of the entries (balance_threads)
-    bool balancing_ = false;            // share_balance_ follows the threads' timings
+    ShareBalance share_balance_;  // the threads' fractions of the entries (balance_threads)
+    bool balancing_ = false;      // share_balance_ follows the threads' timings
+    // Runs body, a stage of thread `part`'s rows, and adds its wall-clock seconds to the thread's
+    // time of the step (ShareBalance) when balancing.
+    template <class Body>
+    void timed_share(std::size_t part, Body&& body) {
+        if (!balancing_) {
+            body();
+            return;
+        }
+        const auto begin = std::chrono::steady_clock::now();
+        body();
+        const std::chrono::duration<double> took = std::chrono::steady_clock::now() - begin;
+        share_balance_.add(part, took.count());
+    }
     std::vector<double> search_share_;  // its fractions, handed to the list's search
     std::vector<Vec<D>> pair_force_;
     std::vector<AngVec<D>> pair_torque_i_, pair_torque_j_;

@@ -6,7 +6,6 @@
 // DemLawLoops, once per step.
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -66,17 +65,10 @@ void DemEngine<D>::pair_forces(double dt_advance) {
             }
             const std::uint32_t* start = list_.start.data();
             const std::size_t k0 = start[pair_rows_[part]], k1 = start[pair_rows_[part + 1]];
-            if (balancing_) {
-                // Each thread's pace for the next split (ShareBalance): its own slot only.
-                const auto begin = std::chrono::steady_clock::now();
-                pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part]);
-                const std::chrono::duration<double> took = std::chrono::steady_clock::now() - begin;
-                share_balance_.record(part, double(k1 - k0), took.count());
-            } else {
-                pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part]);
-            }
+            timed_share(part,
+                        [&] { pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part]); });
             parts_barrier();
-            sum_halo_pair_forces(part, parts);
+            timed_share(part, [&] { sum_halo_pair_forces(part, parts); });
         });
         for (const PairTally& t : tallies_) total.add(t);
     }
@@ -355,7 +347,10 @@ void DemEngine<D>::wall_forces(double dt_advance) {
                 for (std::size_t t = 0; t < pair_rows_.size(); ++t)
                     wall_shares_[t] = std::size_t(
                         std::lower_bound(cand, cand + m, std::uint32_t(pair_rows_[t])) - cand);
-                parallel_ranges(threads_, wall_shares_, share);
+                parallel_ranges(threads_, wall_shares_,
+                                [&, this](std::size_t part, std::size_t k0, std::size_t k1) {
+                                    timed_share(part, [&] { share(part, k0, k1); });
+                                });
             } else {
                 parallel_chunks(wall_threads, m, share);
             }

@@ -9,14 +9,14 @@
 namespace gran {
 namespace {
 
-// Rounds of a loop of `total` work on threads of the given speeds (work per second): each records
-// its share and the time it took, then the shares are rebalanced.
-void run_rounds(ShareBalance& b, const std::vector<double>& speed, int rounds) {
-    const double total = 1e6;
+// Rounds of a threaded loop on threads of the given speeds (work per second): in each of
+// `steps` steps each thread adds the time its share of unit work took; then the shares are
+// rebalanced.
+void run_rounds(ShareBalance& b, const std::vector<double>& speed, int rounds, int steps = 20) {
     for (int r = 0; r < rounds; ++r) {
-        for (std::size_t t = 0; t < speed.size(); ++t) {
-            const double work = b.fraction(t) * total;
-            b.record(t, work, work / speed[t]);
+        for (int s = 0; s < steps; ++s) {
+            for (std::size_t t = 0; t < speed.size(); ++t) b.add(t, b.fraction(t) / speed[t]);
+            b.end_step();
         }
         b.rebalance();
     }
@@ -54,21 +54,60 @@ TEST(ShareBalance, AThreadHalfAsFastConvergesToAThirdOfTheWork) {
     EXPECT_NEAR(b.fraction(0), 1.0 / 3, 1e-6);
 }
 
-TEST(ShareBalance, SharesStayUnchangedUntilEveryThreadWasTimed) {
+// A step is a sample only if every thread timed its share in it, and not the step in which the
+// shares changed (cut partly by the old ones).
+TEST(ShareBalance, SharesStayUnchangedUntilAStepTimedEveryThread) {
     ShareBalance b;
     b.reset(2);
-    b.record(0, 100, 1.0);
-    b.record(1, 100, 0.0);  // no time: nothing to learn
+    b.add(0, 1.0);  // thread 1 did not time its share: no sample
+    b.end_step();
     b.rebalance();
     EXPECT_DOUBLE_EQ(b.fraction(0), 0.5);
-    b.record(0, 100, 1.0);  // the earlier records were cleared: thread 1 has none now
+    b.add(0, 1.0);  // the step of the rebalance: not a sample
+    b.add(1, 3.0);
+    b.end_step();
     b.rebalance();
     EXPECT_DOUBLE_EQ(b.fraction(0), 0.5);
+    b.end_step();
+    b.add(0, 1.0);
+    b.add(1, 3.0);
+    b.end_step();
+    b.rebalance();
+    EXPECT_NEAR(b.fraction(0), 0.5 * (0.5 + 0.75), 1e-12) << "speeds 0.5 / 1 and 0.5 / 3";
     ShareBalance one;
     one.reset(1);
-    one.record(0, 100, 1.0);
+    one.add(0, 1.0);
+    one.end_step();
     one.rebalance();
     EXPECT_DOUBLE_EQ(one.fraction(0), 1.0);
+}
+
+// A thread preempted for a few steps (another process on its core) stalls those steps whatever
+// its share: the median step time ignores them, the mean would not.
+TEST(ShareBalance, AFewPreemptedStepsDoNotMoveTheShares) {
+    ShareBalance b;
+    b.reset(2);
+    for (int s = 0; s < 20; ++s) {
+        b.add(0, s % 5 == 0 ? 10.0 : 1.0);  // four of twenty steps ten times as long
+        b.add(1, 1.0);
+        b.end_step();
+    }
+    b.rebalance();
+    EXPECT_DOUBLE_EQ(b.fraction(0), 0.5);
+}
+
+// More steps than samples kept: the latest kSamples decide.
+TEST(ShareBalance, TheLatestStepsDecide) {
+    ShareBalance b;
+    b.reset(2);
+    for (std::size_t s = 0; s < 3 * ShareBalance::kSamples; ++s) {
+        const bool late = s >= 2 * ShareBalance::kSamples;
+        b.add(0, late ? 2.0 : 1.0);
+        b.add(1, 1.0);
+        b.end_step();
+    }
+    b.rebalance();
+    EXPECT_NEAR(b.fraction(0), 0.5 * (0.5 + 1.0 / 3), 1e-12);
 }
 
 // A nearly stalled thread keeps a share (a quarter of an equal one before the fractions are
