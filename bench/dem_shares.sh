@@ -10,12 +10,25 @@
 #
 #   bench/dem_shares.sh [BUILD_DIR] [ROUNDS] [N] [PARTICLE_STEPS]   (defaults: build 8 100000
 #                                                                    4e8: about 9 minutes)
+#
+# A controlled slow core: NEIGHBOUR="BUSY SLEEP" runs bench/busy_neighbour.cpp (built into the
+# temporary directory) pinned to core 0 during the whole comparison, busy BUSY ms then asleep
+# SLEEP ms; BIND=1 binds the threads to the cores (OMP_PROC_BIND=true OMP_PLACES=cores), so
+# that thread 0 stays on core 0 with the neighbour.
 B=${1:-build}/gran_bench_dem
 ROUNDS=${2:-8}
 N=${3:-100000}
 PSTEPS=${4:-4e8}
 TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+neighbour=
+trap '[[ -n $neighbour ]] && kill "$neighbour"; rm -rf "$TMP"' EXIT
+if [[ ${BIND:-0} == 1 ]]; then export OMP_PROC_BIND=true OMP_PLACES=cores; fi
+if [[ -n ${NEIGHBOUR:-} ]]; then
+  g++ -std=c++20 -O2 "$(dirname "${BASH_SOURCE[0]}")/busy_neighbour.cpp" -o "$TMP/busy_neighbour" || exit 1
+  # shellcheck disable=SC2086
+  taskset -c 0 "$TMP/busy_neighbour" $NEIGHBOUR & neighbour=$!
+  echo "# a neighbour on core 0: busy / asleep $NEIGHBOUR ms; threads bound: ${BIND:-0}"
+fi
 args="--sizes $N --W 9 --warmup-periods 1 --particle-steps $PSTEPS"
 # rate FILE: the wall-clock rate and the state hash of the case's row.
 rate() { grep -E "^ +$N " "$1" | awk '{print $5, $NF}'; }
