@@ -6,7 +6,7 @@
 // plain timers. Units m = d = g = 1.
 //
 //   gran_bench_dem [--sizes 100,1600,10000] [--warmup-periods P] [--particle-steps X] [--W W]
-//                  [--threads T] [--equal-shares] [--sort-interval S] [--stages] [--csv PATH]
+//                  [--threads T] [--sort-interval S] [--stages] [--csv PATH]
 //
 // --csv appends one row per size to PATH in the columns of gran_bench's results/bench.csv
 // (case,engine,dimension,N,packing_fraction,rate,unit; rate in particle-steps per CPU second),
@@ -15,8 +15,6 @@
 // --threads T runs each step on T threads (DemSettings::threads); the CSV rate is then per
 // wall-clock second (unit particle-steps/wall-s, case suffix _T<T>). The last column, a hash of
 // the final positions and velocities, is the same for any T: the threads change no bit.
-// --equal-shares gives each thread the same number of pair entries instead of shares that follow
-// the threads' measured speeds (DemSettings::balance_threads); the hash is the same either way.
 //
 // --sort-interval S renumbers the grains in space every S steps whatever N (0: never;
 // DemSettings::sort_interval); without it the engine's defaults (every 1000 steps from 8192
@@ -72,7 +70,6 @@ struct Options {
     double particle_steps = 5e7;
     double W = 9;  // (A omega)^2 / (d g); 0: static floor
     int threads = 1;
-    bool equal_shares = false;
     std::int64_t sort_interval = -1;  // -1: the engine's default
     bool stages = false;
     std::string csv;
@@ -96,8 +93,6 @@ Options parse(int argc, char** argv) {
             o.W = std::stod(argv[++i]);
         } else if (a == "--threads" && has_value) {
             o.threads = std::stoi(argv[++i]);
-        } else if (a == "--equal-shares") {
-            o.equal_shares = true;
         } else if (a == "--sort-interval" && has_value) {
             o.sort_interval = std::stoll(argv[++i]);
         } else if (a == "--stages") {
@@ -105,12 +100,11 @@ Options parse(int argc, char** argv) {
         } else if (a == "--csv" && has_value) {
             o.csv = argv[++i];
         } else {
-            std::fprintf(
-                stderr,
-                "usage: %s [--sizes 100,1600,10000] [--warmup-periods P] "
-                "[--particle-steps X] [--W W] [--threads T] [--equal-shares] [--sort-interval S] "
-                "[--stages] [--csv PATH]\n",
-                argv[0]);
+            std::fprintf(stderr,
+                         "usage: %s [--sizes 100,1600,10000] [--warmup-periods P] "
+                         "[--particle-steps X] [--W W] [--threads T] [--sort-interval S] "
+                         "[--stages] [--csv PATH]\n",
+                         argv[0]);
             std::exit(2);
         }
     }
@@ -148,18 +142,14 @@ void print_stages(const DemStageTimes& t, double wall, double psteps) {
 }
 
 // How evenly the threads' work was cut (threaded runs): the halo grains of the pair shares and
-// the list search's largest share over the mean, averaged over the timed list builds; and each
-// thread's fraction of the pair entries at the last build (DemSettings::balance_threads).
-void print_shares(const DemEngine<3>& e) {
-    const DemThreadShares& s = e.thread_shares();
+// the list search's largest share over the mean, averaged over the timed list builds.
+void print_shares(const DemThreadShares& s) {
     if (s.splits == 0 || s.searches == 0) return;
     std::printf(
         "# thread shares, mean of %llu list builds: halo grains %.0f (%.2f%% of N), "
-        "search work max / mean %.3f; pair entries per thread at the last build:",
+        "search work max / mean %.3f\n",
         static_cast<unsigned long long>(s.splits), s.halo_grains / double(s.splits),
         100.0 * s.halo_grains / s.grains, s.search_imbalance / double(s.searches));
-    for (int t = 0; t < e.threads(); ++t) std::printf(" %.3f", e.pair_share(std::size_t(t)));
-    std::printf("\n");
 }
 
 }  // namespace
@@ -175,8 +165,7 @@ int main(int argc, char** argv) {
         const double width = bed_width(n);
         const SpeciesTable table = bed_species(n);
         const ContactTable contacts = bed_contacts(table);
-        DemEngine<3> e = vibrated_bed(table, contacts, n, opt.W, opt.threads, opt.sort_interval,
-                                      !opt.equal_shares);
+        DemEngine<3> e = vibrated_bed(table, contacts, n, opt.W, opt.threads, opt.sort_interval);
         e.advance(opt.warmup_periods * period);
 
         const auto steps =
@@ -200,7 +189,7 @@ int main(int argc, char** argv) {
                     e.counters().max_overlap, static_cast<unsigned long long>(state_hash(ps)));
         if (opt.stages) {
             print_stages(e.stage_times(), wall, psteps);
-            print_shares(e);
+            print_shares(e.thread_shares());
         }
         std::fflush(stdout);
         if (!opt.csv.empty()) {

@@ -43,7 +43,7 @@ inline ContactTable bed_contacts(const SpeciesTable& table) {
 // The engine for the bed: keep `table` and `contacts` alive as long as it.
 inline DemEngine<3> vibrated_bed(const SpeciesTable& table, const ContactTable& contacts,
                                  std::size_t n, double W, int threads = 1,
-                                 std::int64_t sort_interval = -1, bool balance_threads = true) {
+                                 std::int64_t sort_interval = -1) {
     const double width = bed_width(n);
     Box<3> box;
     box.length = Vec<3>(width, width, 80);
@@ -51,7 +51,6 @@ inline DemEngine<3> vibrated_bed(const SpeciesTable& table, const ContactTable& 
     DemSettings settings;
     settings.gravity = {0, 0, -1};
     settings.threads = threads;
-    settings.balance_threads = balance_threads;
     if (sort_interval >= 0) {  // -1: the engine's defaults
         settings.sort_interval = std::uint64_t(sort_interval);
         settings.min_particles_to_sort = 0;

@@ -98,8 +98,6 @@ DemEngine<D>::DemEngine(const Box<D>& box, const SpeciesTable& species,
     const std::size_t per_thread = std::max<std::size_t>(1, settings_.min_particles_per_thread);
     threads_ = int(std::min<std::size_t>(std::size_t(settings_.threads),
                                          std::max<std::size_t>(1, p_.size() / per_thread)));
-    share_balance_.reset(std::size_t(threads_));
-    balancing_ = settings_.balance_threads && threads_ > 1;
     configure_neighbours();
     allocate_state();
     place_walls();
@@ -206,12 +204,6 @@ template <int D>
 void DemEngine<D>::rebuild() {
     const bool sort = sort_due();
     if (sort) sort_particles();
-    if (balancing_) {  // the search cut by the threads' speeds, as the pair rows are
-        search_share_.resize(std::size_t(threads_));
-        for (std::size_t t = 0; t < search_share_.size(); ++t)
-            search_share_[t] = share_balance_.fraction(t);
-        list_.set_search_shares(search_share_);
-    }
     list_.build(p_.r, p_.species, threads_, sort ? new_index_.data() : nullptr);
     if (stage_clock_.enabled() && threads_ > 1) tally_search_shares();
     std::fill(disp_.begin(), disp_.end(), Vec<D>::Zero());
@@ -310,10 +302,7 @@ void DemEngine<D>::open_step() {
     // (pair_rows_, of the last list): the lines it writes here are those it reads there, and do
     // not move between the cores (docs/performance.md, "The drift on the pair stage's rows").
     if (rows_split())
-        parallel_ranges(threads_, pair_rows_,
-                        [this, &drift](std::size_t part, std::size_t i0, std::size_t i1) {
-                            timed_share(part, [&] { drift(part, i0, i1); });
-                        });
+        parallel_ranges(threads_, pair_rows_, drift);
     else
         parallel_chunks(threads_, n, drift);
     stage_clock_.lap(stage_times_.kicks_and_drift);
@@ -324,7 +313,6 @@ void DemEngine<D>::open_step() {
     if (*std::max_element(moved2.begin(), moved2.end()) > 0.25 * skin_ * skin_) rebuild();
     stage_clock_.lap(stage_times_.neighbour_list);
     accumulate_forces(dt_);  // 3. forces at t + dt (f_, tau_ were zeroed by kick_drift)
-    if (balancing_) share_balance_.end_step();
 }
 
 template <int D>

@@ -30,14 +30,12 @@
 // wall rotation (lever arm 0).
 #include <array>
 #include <atomic>
-#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "libgran/core/box.hpp"
 #include "libgran/core/particles.hpp"
-#include "libgran/core/share_balance.hpp"
 #include "libgran/core/species.hpp"
 #include "libgran/core/stage_clock.hpp"
 #include "libgran/core/wall_motion.hpp"
@@ -57,10 +55,6 @@ struct DemSettings {
     // system is shorter than the threads' hand-overs, and a thread that waits for a busy core
     // stalls every step).
     std::size_t min_particles_per_thread = 4096;
-    // Threads' shares of the pair rows from their measured speeds (ShareBalance, at each list
-    // build), rather than equal numbers of entries: a slower core gets fewer rows. Only a
-    // schedule: the bits never depend on it. Off, equal shares (benchmarks compare the two).
-    bool balance_threads = true;
     // Spatial sort: at the first list build, then at the first build sort_interval steps or more
     // after the last sort, the particles are renumbered in the order of the list's cells, so
     // that grains near each other in space are near each other in memory (a fluidised bed mixes
@@ -180,11 +174,6 @@ class DemEngine {
     }
     const DemStageTimes& stage_times() const { return stage_times_; }
     const DemThreadShares& thread_shares() const { return thread_shares_; }
-    // Thread t's fraction of the pair list's entries at the last split (ShareBalance).
-    double pair_share(std::size_t t) const { return share_balance_.fraction(t); }
-    // Fixes the threads' fractions of the entries and of the list search's work (they must sum
-    // to 1) and stops the balancing: for tests that the bits do not depend on the cut.
-    void fix_pair_shares(const std::vector<double>& fractions);
     const ContactTable& contacts() const { return contacts_; }
     std::size_t species_count() const { return mass_.size(); }
     double species_mass(std::uint32_t s) const { return mass_[s]; }
@@ -362,22 +351,6 @@ class DemEngine {
     std::vector<std::uint32_t> halo_start_, halo_entries_;
     std::vector<std::uint32_t> halo_slot_, halo_fill_;  // split_pair_rows' scratch
     bool pair_split_stale_ = true;
-    ShareBalance share_balance_;  // the threads' fractions of the entries (balance_threads)
-    bool balancing_ = false;      // share_balance_ follows the threads' timings
-    // Runs body, a stage of thread `part`'s rows, and adds its wall-clock seconds to the thread's
-    // time of the step (ShareBalance) when balancing.
-    template <class Body>
-    void timed_share(std::size_t part, Body&& body) {
-        if (!balancing_) {
-            body();
-            return;
-        }
-        const auto begin = std::chrono::steady_clock::now();
-        body();
-        const std::chrono::duration<double> took = std::chrono::steady_clock::now() - begin;
-        share_balance_.add(part, took.count());
-    }
-    std::vector<double> search_share_;  // its fractions, handed to the list's search
     std::vector<Vec<D>> pair_force_;
     std::vector<AngVec<D>> pair_torque_i_, pair_torque_j_;
     std::vector<PairTally> tallies_;

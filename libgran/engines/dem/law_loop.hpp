@@ -64,11 +64,10 @@ void DemEngine<D>::pair_forces(double dt_advance) {
                 return;
             }
             const std::uint32_t* start = list_.start.data();
-            const std::size_t k0 = start[pair_rows_[part]], k1 = start[pair_rows_[part + 1]];
-            timed_share(part,
-                        [&] { pair_range<L, Rot, true>(dt_advance, k0, k1, tallies_[part]); });
+            pair_range<L, Rot, true>(dt_advance, start[pair_rows_[part]],
+                                     start[pair_rows_[part + 1]], tallies_[part]);
             parts_barrier();
-            timed_share(part, [&] { sum_halo_pair_forces(part, parts); });
+            sum_halo_pair_forces(part, parts);
         });
         for (const PairTally& t : tallies_) total.add(t);
     }
@@ -347,10 +346,7 @@ void DemEngine<D>::wall_forces(double dt_advance) {
                 for (std::size_t t = 0; t < pair_rows_.size(); ++t)
                     wall_shares_[t] = std::size_t(
                         std::lower_bound(cand, cand + m, std::uint32_t(pair_rows_[t])) - cand);
-                parallel_ranges(threads_, wall_shares_,
-                                [&, this](std::size_t part, std::size_t k0, std::size_t k1) {
-                                    timed_share(part, [&] { share(part, k0, k1); });
-                                });
+                parallel_ranges(threads_, wall_shares_, share);
             } else {
                 parallel_chunks(wall_threads, m, share);
             }

@@ -395,8 +395,7 @@ void DemNeighbourList<D>::build(const std::vector<Vec<D>>& r,
 // the floor first) gave the first of two threads 57% of the search's CPU time at N = 10^5. The
 // work of the last build's shares (pair tests plus stencil visits, counted by find_pairs) is
 // taken as spread evenly over each share's slots (the bed changes little between builds), and
-// the new cuts are where that estimate reaches each thread's part (equal parts, or the fractions
-// of set_search_shares: the engine's threads' measured speeds). Equal slots at the
+// the new cuts are where that estimate reaches each thread's equal part. Equal slots at the
 // first build or after a change of size or shares. The pairs found are the same for any split.
 template <int D>
 void DemNeighbourList<D>::balance_search(std::size_t n, std::size_t parts) {
@@ -417,11 +416,8 @@ void DemNeighbourList<D>::balance_search(std::size_t n, std::size_t parts) {
     cut.assign(search_split_.begin(), search_split_.end());
     std::size_t u = 0;         // the old share holding the next cut
     std::uint64_t before = 0;  // work of the old shares before u
-    const bool shared = search_share_.size() == parts;
-    double before_t = 0;  // the fractions of threads 0 .. t - 1 (set_search_shares)
     for (std::size_t t = 1; t < parts; ++t) {
-        before_t += shared ? search_share_[t - 1] : 1.0 / double(parts);
-        const double target = double(total) * before_t;
+        const double target = double(total) * double(t) / double(parts);
         while (u + 1 < parts && double(before + search_work_[u]) < target)
             before += search_work_[u++];
         const double work = double(search_work_[u]);

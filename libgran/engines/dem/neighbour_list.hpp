@@ -63,9 +63,6 @@ class DemNeighbourList {
     }
 
     std::size_t entries() const { return partner.size(); }
-    // Each thread's fraction of the search work at the next builds (one per thread, summing to
-    // 1; empty: equal parts). A schedule only: the entries are the same for any fractions.
-    void set_search_shares(const std::vector<double>& fractions) { search_share_ = fractions; }
     // Per thread, the work of its share of the last build's search: pair tests and stencil
     // visits. The next build's shares are cut to even it out (balance_search).
     const std::vector<std::uint64_t>& search_work() const { return search_work_; }
@@ -143,7 +140,6 @@ class DemNeighbourList {
     // pair tests and stencil visits (balance_search).
     std::vector<std::size_t> search_split_, search_cut_;
     std::vector<std::uint64_t> search_work_;
-    std::vector<double> search_share_;  // set_search_shares
     // bin() on several threads: per thread, its grains per cell, then its next slot per cell;
     // and the grains of each thread's share of the cells.
     std::vector<std::vector<std::uint32_t>> bin_count_;

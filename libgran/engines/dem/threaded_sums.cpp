@@ -9,16 +9,14 @@
 // partners of an earlier share's rows: near a share's boundary, after the spatial sort a thin
 // layer of grains. Their contacts wait in per-entry slots until every share is done.
 #include <algorithm>
-#include <stdexcept>
 
 #include "libgran/core/parallel.hpp"
 #include "libgran/engines/dem/engine.hpp"
 
 namespace gran {
 
-// The shares: consecutive rows holding each thread's fraction of the entries (ShareBalance: equal
-// fractions, or fractions that follow the threads' measured speeds; cut at the first row starting
-// at or after each thread's first entry). A grain is a halo grain if it is
+// The shares: consecutive rows holding about equal numbers of entries (cut at the first row
+// starting at or after each thread's equal split of the entries). A grain is a halo grain if it is
 // the partner of a row of an earlier share: an entry of share t whose partner lies beyond t's
 // rows. Each halo grain's entries as partner are then listed in increasing k (halo_start_,
 // halo_entries_): a counting sort over the few halo grains, not over every entry.
@@ -30,10 +28,9 @@ void DemEngine<D>::split_pair_rows() {
     const std::uint32_t* partner = list_.partner.data();
     pair_rows_.assign(parts + 1, 0);
     pair_rows_[parts] = n;
-    if (share_balance_.parts() != parts) share_balance_.reset(parts);
-    if (balancing_) share_balance_.rebalance();
     for (std::size_t t = 1; t < parts; ++t) {
-        const auto k0 = std::size_t(share_balance_.begins(t) * double(entries));
+        std::size_t k0 = 0, k1 = 0;
+        chunk_bounds(entries, t, parts, k0, k1);
         const std::size_t row = std::size_t(std::lower_bound(start, start + n, k0) - start);
         pair_rows_[t] = std::max(pair_rows_[t - 1], row);
     }
@@ -77,16 +74,6 @@ void DemEngine<D>::split_pair_rows() {
         thread_shares_.halo_grains += double(halos);
         thread_shares_.grains += double(n);
     }
-}
-
-template <int D>
-void DemEngine<D>::fix_pair_shares(const std::vector<double>& fractions) {
-    if (fractions.size() != std::size_t(threads_))
-        throw std::invalid_argument("DEM: fix_pair_shares needs one fraction per thread");
-    share_balance_.fix(fractions);
-    list_.set_search_shares(fractions);  // the next builds' search cut alike
-    balancing_ = false;
-    pair_split_stale_ = true;
 }
 
 // The last build's search imbalance, max / mean work per thread, into thread_shares_.
@@ -149,8 +136,6 @@ void DemEngine<D>::sum_halo_pair_forces(std::size_t part, std::size_t parts) {
     }
 }
 
-template void DemEngine<2>::fix_pair_shares(const std::vector<double>&);
-template void DemEngine<3>::fix_pair_shares(const std::vector<double>&);
 template void DemEngine<2>::split_pair_rows();
 template void DemEngine<3>::split_pair_rows();
 template void DemEngine<2>::tally_search_shares();

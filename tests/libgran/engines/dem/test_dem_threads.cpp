@@ -128,53 +128,6 @@ TEST(DemThreads, FloorContactsSplitBetweenThreadsGiveTheBitsOfOneThread) {
     expect_same_state(one, three, "floor split, 3 threads");
 }
 
-// The threads' shares of the pair rows and of the list search follow their measured speeds
-// (DemSettings::balance_threads), so the cut differs from run to run. Cut far from even, both
-// ways, on two and on three threads, the run gives the bits of one thread.
-template <int D>
-void check_uneven_cuts() {
-    const Bed<D> bed = dense_bed<D>(2000);
-    DemEngine<D> one = bed_engine<D>(bed, 1);
-    DemEngine<D> low = bed_engine<D>(bed, 2);
-    DemEngine<D> high = bed_engine<D>(bed, 2);
-    DemEngine<D> three = bed_engine<D>(bed, 3);
-    low.fix_pair_shares({0.1, 0.9});
-    high.fix_pair_shares({0.85, 0.15});
-    three.fix_pair_shares({0.6, 0.1, 0.3});
-    std::uint64_t active = 0;
-    for (int s = 0; s < 300; ++s) {
-        one.step();
-        low.step();
-        high.step();
-        three.step();
-        active += one.counters().active_contacts;
-    }
-    EXPECT_GT(double(active) / 300, 100) << "contacts per step";
-    EXPECT_GT(one.counters().rebuilds, 3u);
-    EXPECT_DOUBLE_EQ(low.pair_share(0), 0.1);
-    expect_same_state(one, low, "2 threads cut at 0.1");
-    expect_same_state(one, high, "2 threads cut at 0.85");
-    expect_same_state(one, three, "3 threads cut at 0.6, 0.7");
-}
-
-TEST(DemThreads, AnyCutOfThePairRowsGivesTheBitsOfOneThread) {
-    check_uneven_cuts<2>();
-    check_uneven_cuts<3>();
-}
-
-// Balancing on (the default), the fractions stay fractions: each at least a quarter of an equal
-// share before normalising, and summing to 1.
-TEST(DemThreads, BalancedSharesStayProperFractions) {
-    const Bed<3> bed = dense_bed<3>(2000);
-    DemEngine<3> two = bed_engine<3>(bed, 2);
-    for (int s = 0; s < 200; ++s) two.step();
-    EXPECT_GT(two.counters().rebuilds, 3u);
-    const double a = two.pair_share(0), b = two.pair_share(1);
-    EXPECT_NEAR(a + b, 1.0, 1e-12);
-    EXPECT_GT(a, 0.11);
-    EXPECT_GT(b, 0.11);
-}
-
 TEST(DemThreads, SmallSystemsUseOneThreadPerMinimumShare) {
     const Bed<3> bed = dense_bed<3>(1000);
     DemSettings s;
