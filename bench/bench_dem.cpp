@@ -26,7 +26,9 @@
 // the rest of the timed loop (the clock reads themselves, about five per step, among it). On
 // more than one thread a second line says how evenly the work was cut, averaged over the timed
 // list builds: the halo grains of the pair shares (their contacts go through per-entry slots)
-// and the list search's largest share of work over the mean share.
+// and the list search's largest share of work over the mean share. A last line, on any number
+// of threads, gives the list search's milliseconds per build: the slowest thread's and all
+// threads' together.
 //
 // --W 0 keeps the floor static: the bed settles during the warm-up (periods of the W = 9 drive)
 // and the timed part measures a dense bed at rest (about 6 contacts per grain) instead of the
@@ -152,6 +154,19 @@ void print_shares(const DemThreadShares& s) {
         100.0 * s.halo_grains / s.grains, s.search_imbalance / double(s.searches));
 }
 
+// The list search's wall-clock milliseconds per build (any thread count): the slowest thread's
+// and all threads' together, averaged over the timed builds. On two threads of equal speed
+// that scale perfectly, the slowest thread's time is half the one-thread search's and all
+// threads together take as long as one thread alone.
+void print_search(const DemThreadShares& s) {
+    if (s.timed_searches == 0) return;
+    const double per = 1e3 / double(s.timed_searches);
+    std::printf(
+        "# list search, ms per build (%llu builds): slowest thread %.3f, all threads %.3f\n",
+        static_cast<unsigned long long>(s.timed_searches), s.search_slowest * per,
+        s.search_all * per);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -190,6 +205,7 @@ int main(int argc, char** argv) {
         if (opt.stages) {
             print_stages(e.stage_times(), wall, psteps);
             print_shares(e.thread_shares());
+            print_search(e.thread_shares());
         }
         std::fflush(stdout);
         if (!opt.csv.empty()) {

@@ -205,7 +205,7 @@ void DemEngine<D>::rebuild() {
     const bool sort = sort_due();
     if (sort) sort_particles();
     list_.build(p_.r, p_.species, threads_, sort ? new_index_.data() : nullptr);
-    if (stage_clock_.enabled() && threads_ > 1) tally_search_shares();
+    if (stage_clock_.enabled()) tally_search_shares();
     std::fill(disp_.begin(), disp_.end(), Vec<D>::Zero());
     wall_candidates_stale_ = true;
     pair_split_stale_ = true;

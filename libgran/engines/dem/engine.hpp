@@ -98,6 +98,10 @@ struct DemThreadShares {
     double grains = 0;            // sum over the splits of the grains
     std::uint64_t searches = 0;   // list builds searched on more than one thread
     double search_imbalance = 0;  // sum over those builds of max / mean work per thread
+    // The search's wall-clock seconds (DemNeighbourList::search_seconds), on any number of
+    // threads: summed over the timed builds, the slowest thread's and all threads' together.
+    std::uint64_t timed_searches = 0;
+    double search_slowest = 0, search_all = 0;
 };
 
 struct DemEnergies {

@@ -1,6 +1,7 @@
 #include "libgran/engines/dem/neighbour_list.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <utility>
 
@@ -444,8 +445,10 @@ void DemNeighbourList<D>::find_rows(std::size_t n, int threads) {
     const std::uint32_t* cs = cell_start_.data();
     balance_search(n, parts);
     search_work_.assign(parts, 0);
+    search_seconds_.assign(parts, 0.0);
     std::size_t granted = parts;
     parallel_parts(threads, [&](std::size_t part, std::size_t all) {
+        const auto began = std::chrono::steady_clock::now();
         std::size_t s0 = 0, s1 = 0;
         if (all == parts) {
             s0 = search_split_[part];
@@ -461,6 +464,8 @@ void DemNeighbourList<D>::find_rows(std::size_t n, int threads) {
         std::vector<std::uint64_t>& seg = segments_[part];
         search_work_[part] =
             min_image_ ? find_pairs<true>(c0, c1, seg) : find_pairs<false>(c0, c1, seg);
+        const std::chrono::duration<double> took = std::chrono::steady_clock::now() - began;
+        search_seconds_[part] = took.count();
         std::vector<std::uint32_t>& count = row_count_[part];
         count.assign(n, 0u);
         for (std::uint64_t p : seg) ++count[std::size_t(p >> 32)];

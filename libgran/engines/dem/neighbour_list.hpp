@@ -66,6 +66,9 @@ class DemNeighbourList {
     // Per thread, the work of its share of the last build's search: pair tests and stencil
     // visits. The next build's shares are cut to even it out (balance_search).
     const std::vector<std::uint64_t>& search_work() const { return search_work_; }
+    // Per thread, the wall-clock seconds of its share of the last build's search (the pair tests
+    // and stencil visits, and the pairs written to its segment): how the search scales.
+    const std::vector<double>& search_seconds() const { return search_seconds_; }
     std::size_t cells() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
 
     std::vector<std::uint32_t> start;    // n + 1 row offsets
@@ -140,6 +143,7 @@ class DemNeighbourList {
     // pair tests and stencil visits (balance_search).
     std::vector<std::size_t> search_split_, search_cut_;
     std::vector<std::uint64_t> search_work_;
+    std::vector<double> search_seconds_;
     // bin() on several threads: per thread, its grains per cell, then its next slot per cell;
     // and the grains of each thread's share of the cells.
     std::vector<std::vector<std::uint32_t>> bin_count_;

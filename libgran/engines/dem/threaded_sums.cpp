@@ -76,9 +76,17 @@ void DemEngine<D>::split_pair_rows() {
     }
 }
 
-// The last build's search imbalance, max / mean work per thread, into thread_shares_.
+// The last build's search seconds (any thread count) and, on several threads, its imbalance,
+// max / mean work per thread, into thread_shares_.
 template <int D>
 void DemEngine<D>::tally_search_shares() {
+    const std::vector<double>& seconds = list_.search_seconds();
+    if (!seconds.empty()) {
+        ++thread_shares_.timed_searches;
+        for (const double s : seconds) thread_shares_.search_all += s;
+        thread_shares_.search_slowest += *std::max_element(seconds.begin(), seconds.end());
+    }
+    if (threads_ <= 1) return;
     const std::vector<std::uint64_t>& work = list_.search_work();
     if (work.empty()) return;
     std::uint64_t total = 0, most = 0;

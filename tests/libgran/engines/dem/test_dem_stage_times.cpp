@@ -129,5 +129,31 @@ TEST(DemStageTimes, OnTwoThreadsTheHaloGrainsAreThePartnersOfTheFirstSharesRows)
     EXPECT_EQ(one.thread_shares().searches, 0u);
 }
 
+// The list search's seconds are tallied on any number of threads, once per build: on one
+// thread the slowest thread is all of them; on two, the slowest is one of two positive times,
+// so it is at least half their sum and below it.
+TEST(DemStageTimes, TheListSearchIsTimedPerThreadAtEveryBuild) {
+    for (const int threads : {1, 2}) {
+        DemEngine<3> e = bed_engine<3>(dense_bed<3>(2000), threads);
+        e.time_stages(true);
+        const std::uint64_t before = e.counters().rebuilds;
+        e.steps(300);
+        const DemThreadShares& s = e.thread_shares();
+        const std::uint64_t builds = e.counters().rebuilds - before;
+        ASSERT_GT(builds, 2u);
+        EXPECT_EQ(s.timed_searches, builds) << threads << " threads";
+        EXPECT_GT(s.search_slowest, 0.0);
+        if (threads == 1) {
+            EXPECT_EQ(s.search_slowest, s.search_all);
+        } else {
+            EXPECT_GE(s.search_slowest, 0.5 * s.search_all);
+            EXPECT_LT(s.search_slowest, s.search_all);
+        }
+        e.time_stages(false);
+        e.time_stages(true);
+        EXPECT_EQ(e.thread_shares().timed_searches, 0u) << "a new timing starts from zero";
+    }
+}
+
 }  // namespace
 }  // namespace gran
