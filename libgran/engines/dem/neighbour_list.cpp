@@ -463,7 +463,7 @@ void DemNeighbourList<D>::find_rows(std::size_t n, int threads) {
             s1 == n ? cells : std::size_t(std::lower_bound(cs, cs + cells, s1) - cs);
         // The segment is filled on this thread's stack: each append writes the vector's end
         // pointer, and the threads' vectors in segments_ share a cache line (false sharing
-        // made the two halves of the search take 1.5x the one-thread search together).
+        // made the two halves of the search take 1.2-1.5x the one-thread search together).
         std::vector<std::uint64_t> seg;
         seg.swap(segments_[part]);  // its capacity, kept across builds
         search_work_[part] =
